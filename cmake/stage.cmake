@@ -1,0 +1,18 @@
+# Builds the staged MeshLab runtime (see filter_irregular/CMakeLists.txt).
+set(plugins "${STAGE}/lib/x86_64-linux-gnu/meshlab/plugins")
+file(MAKE_DIRECTORY "${STAGE}/bin" "${plugins}")
+foreach(exe meshlabserver meshlab)
+  if(EXISTS "/usr/bin/${exe}")
+    file(COPY "/usr/bin/${exe}" DESTINATION "${STAGE}/bin")
+  endif()
+endforeach()
+# The binaries' RUNPATH is $ORIGIN/../lib/x86_64-linux-gnu/meshlab.
+file(CREATE_LINK "${MESHLAB_LIBDIR}/libmeshlab-common.so" "${STAGE}/lib/x86_64-linux-gnu/meshlab/libmeshlab-common.so" SYMBOLIC)
+file(GLOB sys_plugins "${MESHLAB_LIBDIR}/plugins/*.so")
+foreach(p ${sys_plugins})
+  get_filename_component(n "${p}" NAME)
+  if(NOT n STREQUAL "libfilter_irregular.so")
+    file(CREATE_LINK "${p}" "${plugins}/${n}" SYMBOLIC)
+  endif()
+endforeach()
+file(COPY "${PLUGIN}" DESTINATION "${plugins}")

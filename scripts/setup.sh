@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# Installs what filter_irregular needs on Debian bookworm (run as root; idempotent).
+#  - Debian's MeshLab 2020.09 (runtime: meshlabserver, meshlab, libmeshlab-common.so)
+#  - the MeshLab source package (plugin headers + vcglib), unpacked under .deps/ (git-ignored)
+#  - build tools, Qt5/GLEW/Eigen headers, GoogleTest, Google Benchmark
+#  - Xvfb (meshlabserver needs an X display), Python 3 test driver deps (Debian's pytest, numpy)
+#  - the libcgal-demo corpus of real meshes, unpacked under .deps/data
+set -euo pipefail
+here=$(cd "$(dirname "$0")/.." && pwd)
+deps="$here/.deps"
+mkdir -p "$deps"
+
+pkgs=(meshlab libcgal-demo xvfb xauth cmake ninja-build g++ pkg-config dpkg-dev
+      qtbase5-dev libqt5opengl5-dev libqt5xmlpatterns5-dev libglew-dev libeigen3-dev
+      libgtest-dev libbenchmark-dev zlib1g-dev python3-pytest python3-numpy)
+missing=()
+for p in "${pkgs[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+
+# apt-get source needs a deb-src entry: derive it from the existing Debian sources file.
+srcfile=/etc/apt/sources.list.d/filter-irregular-src.sources
+need_update=0
+if ! grep -rqsE '^(Types:.*deb-src|deb-src )' /etc/apt/sources.list /etc/apt/sources.list.d/; then
+  if [ -f /etc/apt/sources.list.d/debian.sources ]; then
+    sed -e 's/^Types:.*/Types: deb-src/' /etc/apt/sources.list.d/debian.sources > "$srcfile"
+  elif [ -f /etc/apt/sources.list ]; then
+    grep -E '^deb ' /etc/apt/sources.list | sed -e 's/^deb /deb-src /' > /etc/apt/sources.list.d/filter-irregular-src.list
+  fi
+  need_update=1
+fi
+if [ ${#missing[@]} -gt 0 ] || [ $need_update = 1 ] || [ ! -d "$deps/meshlab-src" ]; then
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+fi
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup: installing ${missing[*]}"
+  apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+# MeshLab 2020.09 source (headers and the vcglib it was built with).
+if [ ! -d "$deps/meshlab-src" ]; then
+  tmp=$(mktemp -d "$deps/src.XXXX")
+  (cd "$tmp" && apt-get source -qq meshlab >/dev/null 2>&1 || apt-get source meshlab)
+  d=$(find "$tmp" -maxdepth 1 -mindepth 1 -type d -name 'meshlab-*' | head -1)
+  [ -n "$d" ] || { echo "setup: apt-get source meshlab gave no folder" >&2; exit 1; }
+  mv "$d" "$deps/meshlab-src"
+  rm -rf "$tmp"
+fi
+
+# Real meshes from Debian's libcgal-demo (never committed).
+if [ ! -d "$deps/data/meshes" ]; then
+  mkdir -p "$deps/data"
+  tar -xzf /usr/share/doc/libcgal-dev/data.tar.gz -C "$deps" data/meshes
+fi
+echo "setup: ok (deps in $deps)"

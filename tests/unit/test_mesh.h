@@ -1,0 +1,113 @@
+// Test meshes for vcg_ext unit tests: a plain vcg mesh type with FF and VF adjacency, and
+// procedural shapes with known valences.
+#pragma once
+
+#include <cmath>
+#include <string>
+
+#include <vcg/complex/complex.h>
+#include <vcg/complex/algorithms/create/platonic.h>
+#include <vcg/complex/algorithms/refine.h>
+#include <vcg/complex/algorithms/update/topology.h>
+#include <vcg/complex/algorithms/update/normal.h>
+#include <vcg/complex/algorithms/update/bounding.h>
+#include <vcg/complex/algorithms/clean.h>
+#include <wrap/io_trimesh/import_off.h>
+
+namespace test {
+
+class TVertex;
+class TFace;
+struct TUsedTypes : public vcg::UsedTypes<vcg::Use<TVertex>::AsVertexType, vcg::Use<TFace>::AsFaceType> {};
+class TVertex : public vcg::Vertex<TUsedTypes, vcg::vertex::Coord3f, vcg::vertex::Normal3f, vcg::vertex::VFAdj,
+                                   vcg::vertex::Color4b, vcg::vertex::Qualityf, vcg::vertex::BitFlags,
+                                   vcg::vertex::Mark> {};
+class TFace : public vcg::Face<TUsedTypes, vcg::face::VertexRef, vcg::face::FFAdj, vcg::face::VFAdj,
+                               vcg::face::Normal3f, vcg::face::BitFlags, vcg::face::Mark> {};
+class TMesh : public vcg::tri::TriMesh<std::vector<TVertex>, std::vector<TFace>> {};
+
+inline void UpdateTopology(TMesh& m) {
+  vcg::tri::UpdateTopology<TMesh>::FaceFace(m);
+  vcg::tri::UpdateTopology<TMesh>::VertexFace(m);
+  vcg::tri::UpdateBounding<TMesh>::Box(m);
+  vcg::tri::UpdateNormal<TMesh>::PerFaceNormalized(m);
+}
+
+inline void Icosahedron(TMesh& m) {
+  vcg::tri::Icosahedron(m);
+  UpdateTopology(m);
+}
+
+/// Icosahedron with every triangle split into 4 (`levels` times), projected on the unit sphere.
+inline void Icosphere(TMesh& m, int levels) {
+  vcg::tri::Icosahedron(m);
+  for (int l = 0; l < levels; ++l) {
+    vcg::tri::UpdateTopology<TMesh>::FaceFace(m);
+    vcg::tri::Refine<TMesh, vcg::tri::MidPoint<TMesh>>(m, vcg::tri::MidPoint<TMesh>(&m), 0);
+  }
+  for (auto& v : m.vert) v.P().Normalize();
+  UpdateTopology(m);
+}
+
+/// Regular triangulated torus: n x k grid of quads, each cut by the same diagonal, so every
+/// vertex has valence 6.
+inline void RegularTorus(TMesh& m, int n, int k, float R = 3.f, float r = 1.f) {
+  m.Clear();
+  vcg::tri::Allocator<TMesh>::AddVertices(m, n * k);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < k; ++j) {
+      float a = 2 * float(M_PI) * i / n, b = 2 * float(M_PI) * j / k;
+      m.vert[i * k + j].P() = vcg::Point3f((R + r * std::cos(b)) * std::cos(a), (R + r * std::cos(b)) * std::sin(a),
+                                           r * std::sin(b));
+    }
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < k; ++j) {
+      int a = i * k + j, b = ((i + 1) % n) * k + j, c = ((i + 1) % n) * k + (j + 1) % k, d = i * k + (j + 1) % k;
+      vcg::tri::Allocator<TMesh>::AddFace(m, &m.vert[a], &m.vert[b], &m.vert[c]);
+      vcg::tri::Allocator<TMesh>::AddFace(m, &m.vert[a], &m.vert[c], &m.vert[d]);
+    }
+  UpdateTopology(m);
+}
+
+/// Planar patch of a regular triangular lattice: a hexagon of the given radius (in edges)
+/// around the origin. Interior vertices have valence 6; the centre is vertex 0.
+inline void HexPatch(TMesh& m, int radius) {
+  m.Clear();
+  // axial coordinates (q, r) with |q|, |r|, |q + r| <= radius
+  std::vector<std::pair<int, int>> cells;
+  cells.push_back({0, 0});
+  for (int q = -radius; q <= radius; ++q)
+    for (int r = -radius; r <= radius; ++r)
+      if (!(q == 0 && r == 0) && std::abs(q + r) <= radius) cells.push_back({q, r});
+  auto idx = [&](int q, int r) -> int {
+    for (size_t i = 0; i < cells.size(); ++i)
+      if (cells[i].first == q && cells[i].second == r) return int(i);
+    return -1;
+  };
+  vcg::tri::Allocator<TMesh>::AddVertices(m, cells.size());
+  for (size_t i = 0; i < cells.size(); ++i) {
+    float q = float(cells[i].first), r = float(cells[i].second);
+    m.vert[i].P() = vcg::Point3f(q + 0.5f * r, r * std::sqrt(3.f) / 2.f, 0.f);
+  }
+  for (auto c : cells) {
+    int a = idx(c.first, c.second), b = idx(c.first + 1, c.second), d = idx(c.first, c.second + 1),
+        e = idx(c.first - 1, c.second + 1);
+    if (a >= 0 && b >= 0 && d >= 0) vcg::tri::Allocator<TMesh>::AddFace(m, &m.vert[a], &m.vert[b], &m.vert[d]);
+    if (a >= 0 && d >= 0 && e >= 0) vcg::tri::Allocator<TMesh>::AddFace(m, &m.vert[a], &m.vert[d], &m.vert[e]);
+  }
+  UpdateTopology(m);
+}
+
+inline std::string DataFile(const std::string& name) { return std::string(FI_DATA_DIR) + "/" + name; }
+
+/// Loads a corpus mesh (OFF); returns false if the file is missing.
+inline bool LoadCorpus(TMesh& m, const std::string& name) {
+  int mask = 0;
+  if (vcg::tri::io::ImporterOFF<TMesh>::Open(m, DataFile(name).c_str(), mask) != 0) return false;
+  vcg::tri::Clean<TMesh>::RemoveUnreferencedVertex(m);
+  vcg::tri::Allocator<TMesh>::CompactEveryVector(m);
+  UpdateTopology(m);
+  return true;
+}
+
+}  // namespace test
