@@ -1,0 +1,68 @@
+// Helpers for vcg_ext unit tests: valences by index, exact mesh snapshots, adjacency vs rebuild.
+#pragma once
+
+#include <tuple>
+#include <vector>
+
+#include <vcg_ext/irregular/topology.h>
+
+#include "test_mesh.h"
+
+namespace test {
+
+inline std::vector<int> Valences(TMesh& m) {
+  auto vf = vcg_ext::irregular::ComputeValences(m);
+  return vf.valence;
+}
+
+inline int CountChanged(const std::vector<int>& a, const std::vector<int>& b) {
+  int n = 0;
+  for (size_t i = 0; i < std::min(a.size(), b.size()); ++i) n += a[i] != b[i];
+  return n;
+}
+
+/// Everything an edit may touch, by index: positions, flags, vertex refs, FF, VF, sizes.
+struct MeshSnapshot {
+  std::vector<std::tuple<float, float, float, int, long, int>> verts;
+  std::vector<std::vector<long>> faces;
+  int fn = 0, vn = 0;
+  bool operator==(const MeshSnapshot& o) const { return verts == o.verts && faces == o.faces && fn == o.fn && vn == o.vn; }
+};
+
+inline MeshSnapshot Snapshot(TMesh& m) {
+  MeshSnapshot s;
+  s.fn = m.fn;
+  s.vn = m.vn;
+  auto fidx = [&](const TFace* f) -> long { return f ? long(vcg::tri::Index(m, f)) : -1; };
+  for (auto& v : m.vert)
+    s.verts.emplace_back(v.P()[0], v.P()[1], v.P()[2], v.Flags(), fidx(v.cVFp()), v.cVFi());
+  for (auto& f : m.face) {
+    std::vector<long> r{long(f.Flags())};
+    for (int z = 0; z < 3; ++z) {
+      r.push_back(long(vcg::tri::Index(m, f.cV(z))));
+      r.push_back(fidx(f.cFFp(z)));
+      r.push_back(f.cFFi(z));
+      r.push_back(fidx(f.cVFp(z)));
+      r.push_back(f.cVFi(z));
+    }
+    s.faces.push_back(r);
+  }
+  return s;
+}
+
+/// FF adjacency maintained locally equals vcg's full rebuild (FF is unique on a manifold mesh).
+inline bool AdjacencyEqualsRebuild(TMesh& m) {
+  std::vector<std::pair<long, int>> ff;
+  for (auto& f : m.face)
+    for (int z = 0; z < 3; ++z)
+      ff.push_back({f.IsD() ? -1 : long(vcg::tri::Index(m, f.cFFp(z))), f.IsD() ? 0 : f.cFFi(z)});
+  vcg::tri::UpdateTopology<TMesh>::FaceFace(m);
+  size_t k = 0;
+  bool same = true;
+  for (auto& f : m.face)
+    for (int z = 0; z < 3; ++z, ++k)
+      if (!f.IsD() && (ff[k].first != long(vcg::tri::Index(m, f.cFFp(z))) || ff[k].second != f.cFFi(z))) same = false;
+  return same;
+}
+
+}  // namespace test
