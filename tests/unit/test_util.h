@@ -1,6 +1,8 @@
 // Helpers for vcg_ext unit tests: valences by index, exact mesh snapshots, adjacency vs rebuild.
 #pragma once
 
+#include <algorithm>
+#include <array>
 #include <tuple>
 #include <vector>
 
@@ -65,4 +67,29 @@ inline bool AdjacencyEqualsRebuild(TMesh& m) {
   return same;
 }
 
+}  // namespace test
+
+namespace test {
+/// Live faces as vertex-index triples rotated to start at the smallest index, sorted: equal
+/// for two meshes with the same connectivity whatever the face order or rotation.
+inline std::vector<std::array<int, 3>> CanonicalFaces(TMesh& m) {
+  std::vector<std::array<int, 3>> out;
+  for (auto& f : m.face) {
+    if (f.IsD()) continue;
+    std::array<int, 3> t{int(vcg::tri::Index(m, f.cV(0))), int(vcg::tri::Index(m, f.cV(1))), int(vcg::tri::Index(m, f.cV(2)))};
+    while (t[0] > t[1] || t[0] > t[2]) std::rotate(t.begin(), t.begin() + 1, t.end());
+    out.push_back(t);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+/// Indices of live vertices whose valence is not regular.
+inline std::vector<int> IrregularVertices(TMesh& m) {
+  auto vf = vcg_ext::irregular::ComputeValences(m);
+  std::vector<int> r;
+  for (size_t i = 0; i < m.vert.size(); ++i)
+    if (!m.vert[i].IsD() && vf.IsIrregular(i)) r.push_back(int(i));
+  return r;
+}
 }  // namespace test
