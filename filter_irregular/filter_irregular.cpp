@@ -7,6 +7,11 @@
 #include <vcg/complex/algorithms/update/flag.h>
 #include <vcg/complex/algorithms/update/selection.h>
 
+#include <vcg/complex/algorithms/update/normal.h>
+#include <vcg/complex/algorithms/update/bounding.h>
+#include <vcg/complex/algorithms/update/topology.h>
+
+#include <vcg_ext/irregular/atomic_ops.h>
 #include <vcg_ext/irregular/legend.h>
 #include <vcg_ext/irregular/mesh_checks.h>
 #include <vcg_ext/irregular/topology.h>
@@ -14,7 +19,7 @@
 namespace irr = vcg_ext::irregular;
 
 FilterIrregularPlugin::FilterIrregularPlugin() {
-  typeList << FP_ANALYZE;
+  typeList << FP_ANALYZE << FP_ATOMIC;
   for (FilterIDType t : types()) actionList << new QAction(filterName(t), this);
 }
 
@@ -40,7 +45,23 @@ QString FilterIrregularPlugin::filterInfo(FilterIDType id) const {
              "(Li et al., Editing Operations for Irregular Vertices in Triangle Meshes, eq. 2). "
              "Refuses non-manifold or polygonal meshes without changing them.";
     case FP_ATOMIC:
-      return "Applies one atomic operation on irregular vertices.";
+      return "Applies one atomic operation of Li et al. (sec. 6.1-6.2) to the selected vertices "
+             "(select them with the Analyze filter, by hand, or with 'Conditional Vertex Selection'):<br>"
+             "<b>5-7 pair move</b>: select an adjacent v5 and v7; direction 0..5 turns counter-clockwise "
+             "around the v5 starting at the v7 (1, 4: edge flips; 2, 3: collapses; 0, 5: splits).<br>"
+             "<b>v5/v7 move with 5-7 pair generation</b>: select one v5 or v7; it moves toward its "
+             "neighbour number 'direction' (counted counter-clockwise from its neighbour of smallest "
+             "index) and leaves an adjacent 5-7 pair.<br>"
+             "<b>v5/v7 move with 5-7 pair removal</b>: select an adjacent 5-5-7 or 5-7-7 triple; it "
+             "becomes one v5 or v7 (triple cancellation).<br>"
+             "<b>5-5-7-7 generation</b> (by flip or by split): select one regular vertex.<br>"
+             "<b>5-5-7-7 removal</b>: select the four vertices of a quadruple in two triangles.<br>"
+             "<b>Edge flip / collapse</b>: select the two ends of the edge (collapse keeps the lower "
+             "index). <b>Vertex split</b>: select a vertex and two of its neighbours.<br>"
+             "Impossible requests are refused with the reason (one irregular vertex cannot move alone, "
+             "Theorem 5.1; a 5-7 pair cannot be cancelled, Theorem 5.5). A refused operation leaves the "
+             "mesh unchanged. Afterwards vertices are recoloured and the resulting irregular vertices "
+             "selected.";
   }
   return "";
 }
@@ -79,6 +100,20 @@ void FilterIrregularPlugin::initParameterSet(QAction* a, MeshModel&, RichParamet
                            "Used with 'Only valence': select the vertices of this (interior-equivalent) valence."));
       par.addParam(RichBool("colorize", true, "Colour by valence",
                             "Paint vertices with the plugin's valence legend (v5 blue, v7 orange, v8 red, ...)."));
+      break;
+    case FP_ATOMIC:
+      par.addParam(RichEnum("operation", 0, QStringList() << "5-7 pair move"
+                                                           << "v5/v7 move with 5-7 pair generation"
+                                                           << "v5/v7 move with 5-7 pair removal (triple cancellation)"
+                                                           << "5-5-7-7 generation by flip"
+                                                           << "5-5-7-7 generation by split"
+                                                           << "5-5-7-7 removal"
+                                                           << "Edge flip" << "Edge collapse" << "Vertex split",
+                            "Operation", "Which atomic operation to apply to the selected vertices."));
+      par.addParam(RichInt("direction", 0, "Direction",
+                           "5-7 pair move: 0..5 counter-clockwise around the v5 from the v7. Single-vertex "
+                           "operations: index of the neighbour to move toward, counter-clockwise from the "
+                           "neighbour with the smallest vertex index."));
       break;
   }
 }
@@ -122,8 +157,124 @@ bool FilterIrregularPlugin::analyze(MeshModel& mm, const RichParameterList& par)
   return true;
 }
 
-bool FilterIrregularPlugin::atomic(MeshModel&, const RichParameterList&) {
-  return refuse("not available");
+namespace {
+/// Indices of the selected live vertices, ascending.
+std::vector<int> SelectedVertices(CMeshO& m) {
+  std::vector<int> s;
+  for (size_t i = 0; i < m.vert.size(); ++i)
+    if (!m.vert[i].IsD() && m.vert[i].IsS()) s.push_back(int(i));
+  return s;
+}
+
+/// After an edit: drop deleted elements, rebuild adjacency once, update normals and box.
+void FinishEdit(CMeshO& m) {
+  vcg::tri::Allocator<CMeshO>::CompactEveryVector(m);
+  vcg::tri::UpdateTopology<CMeshO>::FaceFace(m);
+  vcg::tri::UpdateTopology<CMeshO>::VertexFace(m);
+  vcg::tri::UpdateNormal<CMeshO>::PerVertexNormalizedPerFace(m);
+  vcg::tri::UpdateBounding<CMeshO>::Box(m);
+}
+}  // namespace
+
+bool FilterIrregularPlugin::atomic(MeshModel& mm, const RichParameterList& par) {
+  CMeshO& m = mm.cm;
+  irr::Result input = irr::DiagnoseInput(m).Verdict();
+  if (!input) return refuse(QString::fromStdString(input.reason));
+  const int op = par.getEnum("operation");
+  const int dir = par.getInt("direction");
+  std::vector<int> sel = SelectedVertices(m);
+  irr::MeshEditor<CMeshO> ed(m);
+  irr::AtomicOperations<CMeshO> ops(ed);
+  auto valences = [&](const std::vector<int>& vs) {
+    std::vector<int> d;
+    for (int v : vs) d.push_back(ed.Valence(v));
+    std::sort(d.begin(), d.end());
+    return d;
+  };
+  auto need = [&](size_t n, const char* what) -> bool {
+    if (sel.size() == n) return true;
+    refuse(QString("%1 needs exactly %2 selected vertices (%3); %4 are selected.")
+               .arg(what).arg(n).arg(n == 1 ? "one" : n == 2 ? "two" : n == 3 ? "three" : "four")
+               .arg(sel.size()));
+    return false;
+  };
+  irr::AtomicOutcome out;
+  switch (op) {
+    case 0: {  // 5-7 pair move
+      if (sel.size() == 1 && (ed.Valence(sel[0]) == 5 || ed.Valence(sel[0]) == 7))
+        return refuse(QString::fromStdString(irr::ImpossibleRequest::MoveSingleVertex()));
+      if (!need(2, "A 5-7 pair move")) return false;
+      int a = sel[0], b = sel[1];
+      if (ed.Valence(a) == 7) std::swap(a, b);
+      out = ops.MovePair57(a, b, dir);
+      break;
+    }
+    case 1:
+      if (!need(1, "A move with 5-7 pair generation")) return false;
+      out = ops.MoveWithPairGeneration(sel[0], dir);
+      break;
+    case 2:
+      if (sel.size() == 2 && valences(sel) == std::vector<int>{5, 7})
+        return refuse(QString::fromStdString(irr::ImpossibleRequest::CancelPair57()));
+      if (!need(3, "A triple cancellation")) return false;
+      out = ops.MoveWithPairRemoval(sel);
+      break;
+    case 3:
+    case 4:
+      if (!need(1, "A 5-5-7-7 generation")) return false;
+      out = ops.GenerateQuadruple(sel[0], dir, op == 4);
+      break;
+    case 5:
+      if (sel.size() == 2 && valences(sel) == std::vector<int>{5, 7})
+        return refuse(QString::fromStdString(irr::ImpossibleRequest::CancelPair57()));
+      if (!need(4, "A 5-5-7-7 removal")) return false;
+      out = ops.RemoveQuadruple(sel);
+      break;
+    case 6:
+      if (!need(2, "An edge flip")) return false;
+      out.result = ed.Flip(sel[0], sel[1]);
+      out.description = QString("flip edge (%1, %2)").arg(sel[0]).arg(sel[1]).toStdString();
+      break;
+    case 7:
+      if (!need(2, "An edge collapse")) return false;
+      out.result = ed.Collapse(sel[1], sel[0]);
+      out.description = QString("collapse vertex %1 into %2").arg(sel[1]).arg(sel[0]).toStdString();
+      break;
+    case 8: {
+      if (!need(3, "A vertex split")) return false;
+      // the split vertex is the one adjacent to the other two
+      std::vector<int> centre;
+      for (int i = 0; i < 3; ++i)
+        if (ed.Adjacent(sel[i], sel[(i + 1) % 3]) && ed.Adjacent(sel[i], sel[(i + 2) % 3])) centre.push_back(i);
+      if (centre.size() != 1)
+        return refuse(centre.empty() ? "A vertex split needs a vertex and two of its neighbours."
+                                     : "Ambiguous vertex split: the three selected vertices form a triangle; select "
+                                       "two neighbours of the split vertex that are not adjacent to each other.");
+      const int c = centre[0];
+      int created = -1;
+      out.result = ed.Split(sel[c], sel[(c + 1) % 3], sel[(c + 2) % 3], &created);
+      out.description = QString("split vertex %1 along edges to %2 and %3")
+                            .arg(sel[c]).arg(sel[(c + 1) % 3]).arg(sel[(c + 2) % 3]).toStdString();
+      break;
+    }
+    default: return refuse("Unknown operation.");
+  }
+  if (!out.result) return refuse(QString::fromStdString(out.result.reason));
+  // Re-select what the operation produced (irregular vertices it reports, or the touched ones).
+  std::vector<int> keep = out.irregular;
+  if (keep.empty())
+    for (int v : sel)
+      if (ed.IsLive(v)) keep.push_back(v);
+  for (auto& v : m.vert) v.ClearS();
+  for (int v : keep)
+    if (ed.IsLive(v)) m.vert[size_t(v)].SetS();
+  QString changes;
+  for (auto& kv : out.changes) changes += QString(" %1:%2").arg(kv.first).arg(kv.second);
+  FinishEdit(m);
+  Log("Atomic operation: %s", out.description.c_str());
+  if (!changes.isEmpty()) Log("Valence after, by vertex index before compaction:%s", qUtf8Printable(changes));
+  paintAndLog(mm, true, 0, 0, true);
+  return true;
 }
 
 bool FilterIrregularPlugin::applyFilter(QAction* a, MeshDocument& md, const RichParameterList& par,
