@@ -38,7 +38,7 @@ namespace irregular {
 
 /// What an atomic operation did.
 struct AtomicOutcome {
-  Result result;
+  Result result = Result::Fail("not applied");
   std::string description;              ///< e.g. "flip edge (12, 40)"
   std::map<int, int> changes;           ///< vertex index -> valence after (deleted: 0)
   std::vector<int> irregular;           ///< the irregular vertices the operation leaves (the
@@ -324,7 +324,8 @@ class AtomicOperations {
   /// (0 = none), and changes no other valence.
   AtomicOutcome SearchCancellation(AtomicOutcome& out, const std::vector<int>& group, int cancelled, int survivor,
                                    const std::string& what) {
-    std::vector<Candidate> cands;
+    // Valences and stars of the area (the group and its 1-ring), computed once: the search
+    // predicts every candidate's outcome from them without editing (sec. 6.1 rules).
     std::vector<int> area = group;
     for (int v : group) {
       VertexStar<MeshType> s = ed_.Star(v);
@@ -332,30 +333,52 @@ class AtomicOperations {
     }
     std::sort(area.begin(), area.end());
     area.erase(std::unique(area.begin(), area.end()), area.end());
+    std::map<int, int> valence;
+    auto val = [&](int v) {
+      auto it = valence.find(v);
+      if (it != valence.end()) return it->second;
+      return valence[v] = ed_.Valence(v);
+    };
+    struct Scored {
+      Candidate c;
+      int o[2];
+    };
+    std::vector<Scored> cands;
     for (int v : area) {
       VertexStar<MeshType> s = ed_.Star(v);
-      for (VertexType* n : s.neighbors) {
-        int w = ed_.Index(n);
-        if (v < w) cands.push_back({0, v, w});
-        cands.push_back({1, v, w});
+      if (s.boundary) continue;
+      const int d = int(s.neighbors.size());
+      for (int k = 0; k < d; ++k) {
+        const int w = ed_.Index(s.neighbors[size_t(k)]);
+        if (w < v) continue;  // each edge once; a collapse removes the higher index
+        Scored sc;
+        sc.o[0] = ed_.Index(s.neighbors[size_t((k + 1) % d)]);
+        sc.o[1] = ed_.Index(s.neighbors[size_t((k + d - 1) % d)]);
+        sc.c = Candidate{0, v, w};
+        cands.push_back(sc);
+        sc.c = Candidate{1, w, v};
+        cands.push_back(sc);
       }
     }
-    for (const Candidate& c : cands) {
-      // Predict valences without editing (sec. 6.1 rules).
+    for (const Scored& sc : cands) {
+      const Candidate& c = sc.c;
+      const int* o = sc.o;
+      // every group member must be one of the four vertices the operation touches
+      bool covers = true;
+      for (int g : group) covers = covers && (g == c.x || g == c.y || g == o[0] || g == o[1]);
+      if (!covers) continue;
       std::map<int, int> pred;
-      int o[2];
-      if (!ed_.Opposites(c.x, c.y, o)) continue;
-      const int dx = ed_.Valence(c.x), dy = ed_.Valence(c.y);
+      const int dx = val(c.x), dy = val(c.y);
       if (c.kind == 0) {
-        pred = {{c.x, dx - 1}, {c.y, dy - 1}, {o[0], ed_.Valence(o[0]) + 1}, {o[1], ed_.Valence(o[1]) + 1}};
+        pred = {{c.x, dx - 1}, {c.y, dy - 1}, {o[0], val(o[0]) + 1}, {o[1], val(o[1]) + 1}};
       } else {
-        pred = {{c.x, 0}, {c.y, dx + dy - 4}, {o[0], ed_.Valence(o[0]) - 1}, {o[1], ed_.Valence(o[1]) - 1}};
+        pred = {{c.x, 0}, {c.y, dx + dy - 4}, {o[0], val(o[0]) - 1}, {o[1], val(o[1]) - 1}};
       }
       int irregularBefore = 0, irregularAfter = 0, groupRegularAfter = 0;
       int newSurvivors = 0;
       bool ok = true;
       for (auto& kv : pred) {
-        const int before = ed_.Valence(kv.first);
+        const int before = val(kv.first);
         const bool inGroup = std::find(group.begin(), group.end(), kv.first) != group.end();
         if (before != 6) ++irregularBefore;
         if (!inGroup && before != 6) ok = false;  // never disturb other irregular vertices
@@ -366,9 +389,6 @@ class AtomicOperations {
           ++newSurvivors;
         }
       }
-      // every group member must be touched
-      for (int g : group)
-        if (!pred.count(g)) ok = false;
       if (!ok) continue;
       if (irregularBefore - irregularAfter != cancelled) continue;
       if (newSurvivors != (survivor ? 1 : 0)) continue;
