@@ -1,0 +1,92 @@
+// filter_irregular: triangle quality and fidelity measures, used by tests, benchmarks and logs.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <vcg/complex/complex.h>
+
+#include "surface_projector.h"
+
+namespace vcg_ext {
+namespace irregular {
+
+struct ShapeMeasures {
+  double minAngleDeg = 180;      ///< smallest angle of any triangle
+  double meanMinAngleDeg = 0;    ///< mean over triangles of their smallest angle
+  double shareBelow30 = 0;       ///< share of triangles whose smallest angle is under 30 degrees
+  double edgeLengthMean = 0;
+  double edgeLengthSpread = 0;   ///< standard deviation / mean of edge lengths
+  int faces = 0;
+};
+
+/// Angles and edge lengths of the live faces. O(F).
+template <class MeshType>
+ShapeMeasures MeasureShape(const MeshType& m) {
+  ShapeMeasures s;
+  double sumMin = 0, sumL = 0, sumL2 = 0;
+  long edges = 0, below = 0;
+  for (auto& f : m.face) {
+    if (f.IsD()) continue;
+    double mn = 180;
+    for (int z = 0; z < 3; ++z) {
+      auto a = f.cP((z + 1) % 3) - f.cP(z), b = f.cP((z + 2) % 3) - f.cP(z);
+      double la = a.Norm(), lb = b.Norm();
+      double ang = (la > 0 && lb > 0) ? std::acos(std::max(-1.0, std::min(1.0, double(a.dot(b)) / (la * lb)))) * 180 / M_PI : 0;
+      mn = std::min(mn, ang);
+      sumL += la;
+      sumL2 += la * la;
+      ++edges;
+    }
+    s.minAngleDeg = std::min(s.minAngleDeg, mn);
+    sumMin += mn;
+    below += mn < 30;
+    ++s.faces;
+  }
+  if (s.faces) {
+    s.meanMinAngleDeg = sumMin / s.faces;
+    s.shareBelow30 = double(below) / s.faces;
+    s.edgeLengthMean = sumL / edges;
+    double var = std::max(0.0, sumL2 / edges - s.edgeLengthMean * s.edgeLengthMean);
+    s.edgeLengthSpread = s.edgeLengthMean > 0 ? std::sqrt(var) / s.edgeLengthMean : 0;
+  }
+  return s;
+}
+
+/// One-sided Hausdorff distance from mesh a to the surface of `to`, sampled at a's vertices,
+/// edge midpoints and face centroids. O(F log F).
+template <class MeshType>
+double OneSidedHausdorff(const MeshType& a, const SurfaceProjector& to) {
+  double mx = 0;
+  auto probe = [&](const vcg::Point3f& p) {
+    float d = 0;
+    to.Closest(p, &d);
+    mx = std::max(mx, double(d));
+  };
+  for (auto& v : a.vert)
+    if (!v.IsD()) probe(vcg::Point3f::Construct(v.cP()));
+  for (auto& f : a.face) {
+    if (f.IsD()) continue;
+    vcg::Point3f p0 = vcg::Point3f::Construct(f.cP(0)), p1 = vcg::Point3f::Construct(f.cP(1)),
+                 p2 = vcg::Point3f::Construct(f.cP(2));
+    probe((p0 + p1 + p2) / 3.f);
+    probe((p0 + p1) / 2.f);
+    probe((p1 + p2) / 2.f);
+    probe((p2 + p0) / 2.f);
+  }
+  return mx;
+}
+
+/// Symmetric Hausdorff distance between the edited mesh and the original surface, in percent of
+/// the original's bounding-box diagonal.
+template <class MeshType>
+double HausdorffPercent(const MeshType& edited, const SurfaceProjector& original) {
+  SurfaceProjector editedSurface(edited);
+  double ab = OneSidedHausdorff(edited, original);
+  double ba = OneSidedHausdorff(original.Mesh(), editedSurface);
+  return 100.0 * std::max(ab, ba) / original.Diagonal();
+}
+
+}  // namespace irregular
+}  // namespace vcg_ext
