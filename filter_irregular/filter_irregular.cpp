@@ -1,6 +1,8 @@
 // filter_irregular: MeshLab adapter. Each filter translates parameters, calls vcg_ext, logs.
 #include "filter_irregular.h"
 
+#include <memory>
+
 #include <QString>
 #include <QStringList>
 
@@ -14,12 +16,14 @@
 #include <vcg_ext/irregular/atomic_ops.h>
 #include <vcg_ext/irregular/legend.h>
 #include <vcg_ext/irregular/mesh_checks.h>
+#include <vcg_ext/irregular/quality.h>
+#include <vcg_ext/irregular/relaxation.h>
 #include <vcg_ext/irregular/topology.h>
 
 namespace irr = vcg_ext::irregular;
 
 FilterIrregularPlugin::FilterIrregularPlugin() {
-  typeList << FP_ANALYZE << FP_ATOMIC;
+  typeList << FP_ANALYZE << FP_ATOMIC << FP_RELAX;
   for (FilterIDType t : types()) actionList << new QAction(filterName(t), this);
 }
 
@@ -29,6 +33,7 @@ QString FilterIrregularPlugin::filterName(FilterIDType id) const {
   switch (id) {
     case FP_ANALYZE: return "Irregular Vertices: Analyze";
     case FP_ATOMIC: return "Irregular Vertices: Atomic Operation";
+    case FP_RELAX: return "Irregular Vertices: Relax";
   }
   return "";
 }
@@ -62,6 +67,14 @@ QString FilterIrregularPlugin::filterInfo(FilterIDType id) const {
              "Theorem 5.1; a 5-7 pair cannot be cancelled, Theorem 5.5). A refused operation leaves the "
              "mesh unchanged. Afterwards vertices are recoloured and the resulting irregular vertices "
              "selected.";
+    case FP_RELAX:
+      return "Improves the shape of triangles without changing connectivity (Li et al., sec. 8). "
+             "<b>Local</b>: vertices move one at a time in their tangent plane toward the centroid of "
+             "their neighbours (Turk 1992). <b>Global</b>: solves the quadratic energy of eq. 5 "
+             "(uniform edge lengths, equal angles around each vertex) with each vertex constrained to its "
+             "tangent plane, with a sparse LDLT solver. Moved vertices are projected back onto the mesh as "
+             "it was before the filter. Vertices on sharp creases stay fixed. Logs triangle quality and the "
+             "Hausdorff distance to the input before and after.";
   }
   return "";
 }
@@ -70,6 +83,7 @@ MeshFilterInterface::FilterClass FilterIrregularPlugin::getClass(QAction* a) {
   switch (ID(a)) {
     case FP_ANALYZE: return FilterClass(Quality | Measure | Selection);
     case FP_ATOMIC: return FilterClass(Remeshing | Selection);
+    case FP_RELAX: return FilterClass(Smoothing | Remeshing);
   }
   return Generic;
 }
@@ -114,6 +128,22 @@ void FilterIrregularPlugin::initParameterSet(QAction* a, MeshModel&, RichParamet
                            "5-7 pair move: 0..5 counter-clockwise around the v5 from the v7. Single-vertex "
                            "operations: index of the neighbour to move toward, counter-clockwise from the "
                            "neighbour with the smallest vertex index."));
+      par.addParam(RichBool("relax", true, "Relax after editing",
+                            "Local relaxation of the 2-ring around the changed vertices, projected onto the "
+                            "surface as it was before the filter (paper sec. 8)."));
+      break;
+    case FP_RELAX:
+      par.addParam(RichEnum("mode", 0, QStringList() << "Local" << "Global", "Mode",
+                            "Local: one vertex at a time (fast). Global: sparse least-squares solve of eq. 5."));
+      par.addParam(RichInt("iterations", 10, "Iterations", "Sweeps (local) or solve-and-project rounds (global)."));
+      par.addParam(RichEnum("region", 0, QStringList() << "All" << "Selection" << "Around irregular vertices",
+                            "Region", "Which vertices move. With nothing selected, Selection relaxes the whole mesh. "
+                                      "Around irregular vertices: the 2-ring of every irregular vertex."));
+      par.addParam(RichBool("reproject", true, "Project onto the original surface",
+                            "Project moved vertices back onto the mesh as it was before the filter."));
+      par.addParam(RichFloat("featureAngle", 60.f, "Feature angle (degrees)",
+                             "Vertices on edges whose dihedral angle exceeds this stay fixed, so sharp creases "
+                             "survive. 0 disables."));
       break;
   }
 }
@@ -183,6 +213,8 @@ bool FilterIrregularPlugin::atomic(MeshModel& mm, const RichParameterList& par) 
   const int op = par.getEnum("operation");
   const int dir = par.getInt("direction");
   std::vector<int> sel = SelectedVertices(m);
+  std::unique_ptr<irr::SurfaceProjector> projector;
+  if (par.getBool("relax")) projector.reset(new irr::SurfaceProjector(m));
   irr::MeshEditor<CMeshO> ed(m);
   irr::AtomicOperations<CMeshO> ops(ed);
   auto valences = [&](const std::vector<int>& vs) {
@@ -268,6 +300,14 @@ bool FilterIrregularPlugin::atomic(MeshModel& mm, const RichParameterList& par) 
   for (auto& v : m.vert) v.ClearS();
   for (int v : keep)
     if (ed.IsLive(v)) m.vert[size_t(v)].SetS();
+  if (par.getBool("relax")) {
+    std::vector<int> seeds;
+    for (auto& kv : out.changes)
+      if (ed.IsLive(kv.first)) seeds.push_back(kv.first);
+    irr::RelaxOptions ro;
+    ro.iterations = 5;
+    irr::LocalRelax(m, irr::KRing(m, seeds, 2), projector.get(), ro);
+  }
   QString changes;
   for (auto& kv : out.changes) changes += QString(" %1:%2").arg(kv.first).arg(kv.second);
   FinishEdit(m);
@@ -277,13 +317,68 @@ bool FilterIrregularPlugin::atomic(MeshModel& mm, const RichParameterList& par) 
   return true;
 }
 
+void FilterIrregularPlugin::logShape(const char* when, CMeshO& m) {
+  irr::ShapeMeasures s = irr::MeasureShape(m);
+  Log("%s: min angle %.2f deg, mean min angle %.2f deg, %.2f%% of triangles under 30 deg, edge length spread %.3f",
+      when, s.minAngleDeg, s.meanMinAngleDeg, 100.0 * s.shareBelow30, s.edgeLengthSpread);
+}
+
+bool FilterIrregularPlugin::relax(MeshModel& mm, const RichParameterList& par, vcg::CallBackPos* cb) {
+  CMeshO& m = mm.cm;
+  irr::Result input = irr::DiagnoseInput(m).Verdict();
+  if (!input) return refuse(QString::fromStdString(input.reason));
+  irr::RelaxOptions ro;
+  ro.mode = irr::RelaxMode(par.getEnum("mode"));
+  ro.iterations = std::max(0, par.getInt("iterations"));
+  ro.reproject = par.getBool("reproject");
+  ro.featureAngleDeg = par.getFloat("featureAngle");
+  std::vector<int> region;
+  const int which = par.getEnum("region");
+  if (which == 1) region = SelectedVertices(m);
+  if (which == 2) {
+    irr::ValenceField<CMeshO> vf = irr::ComputeValences(m);
+    std::vector<int> seeds;
+    for (size_t i = 0; i < m.vert.size(); ++i)
+      if (!m.vert[i].IsD() && vf.IsIrregular(i)) seeds.push_back(int(i));
+    region = irr::KRing(m, seeds, 2);
+  }
+  if (which == 0 || (which == 1 && region.empty()))
+    for (size_t i = 0; i < m.vert.size(); ++i)
+      if (!m.vert[i].IsD()) region.push_back(int(i));
+  irr::SurfaceProjector original(m);
+  std::vector<char> crease = irr::CreaseVertices(m, ro.featureAngleDeg);
+  logShape("Before", m);
+  // Progress: one sweep at a time so the bar moves.
+  irr::RelaxOptions one = ro;
+  one.iterations = 1;
+  irr::RelaxReport total;
+  for (int it = 0; it < ro.iterations; ++it) {
+    if (cb) cb(100 * it / std::max(1, ro.iterations), "Relaxing...");
+    irr::RelaxReport r = irr::Relax(m, region, ro.reproject ? &original : nullptr, one, &crease);
+    total.vertices = r.vertices;
+    total.moved += r.moved;
+    total.rejected += r.rejected;
+    total.seconds += r.seconds;
+    total.solveSeconds += r.solveSeconds;
+  }
+  vcg::tri::UpdateNormal<CMeshO>::PerVertexNormalizedPerFace(m);
+  vcg::tri::UpdateBounding<CMeshO>::Box(m);
+  logShape("After", m);
+  Log("Relaxed %d vertices (%s, %d iterations): %d moves, %d refused (would fold), %.3f s (solver %.3f s)",
+      total.vertices, ro.mode == irr::RelaxMode::Global ? "global" : "local", ro.iterations, total.moved,
+      total.rejected, total.seconds, total.solveSeconds);
+  Log("Hausdorff distance to the input: %.4f%% of the bounding box diagonal", irr::HausdorffPercent(m, original));
+  return true;
+}
+
 bool FilterIrregularPlugin::applyFilter(QAction* a, MeshDocument& md, const RichParameterList& par,
-                                        vcg::CallBackPos*) {
+                                        vcg::CallBackPos* cb) {
   MeshModel* mm = md.mm();
   if (mm == nullptr) return refuse("There is no current mesh.");
   switch (ID(a)) {
     case FP_ANALYZE: return analyze(*mm, par);
     case FP_ATOMIC: return atomic(*mm, par);
+    case FP_RELAX: return relax(*mm, par, cb);
   }
   return refuse("Unknown filter.");
 }

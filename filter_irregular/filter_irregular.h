@@ -11,7 +11,7 @@ class FilterIrregularPlugin : public QObject, public MeshFilterInterface {
   Q_INTERFACES(MeshFilterInterface)
 
  public:
-  enum { FP_ANALYZE, FP_ATOMIC };
+  enum { FP_ANALYZE, FP_ATOMIC, FP_RELAX };
 
   FilterIrregularPlugin();
   QString pluginName() const override;
@@ -28,6 +28,8 @@ class FilterIrregularPlugin : public QObject, public MeshFilterInterface {
  private:
   bool analyze(MeshModel& mm, const RichParameterList& par);
   bool atomic(MeshModel& mm, const RichParameterList& par);
+  bool relax(MeshModel& mm, const RichParameterList& par, vcg::CallBackPos* cb);
+  void logShape(const char* when, CMeshO& m);
   /// Refuses: the reason goes to the error message (GUI dialog) and to the log (meshlabserver
   /// prints the log but not the error message). Returns false for `return refuse(...)`.
   bool refuse(const QString& why);

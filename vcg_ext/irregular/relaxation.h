@@ -38,8 +38,11 @@ struct RelaxOptions {
   double step = 0.5;              ///< local: share of the way to the target per sweep
   bool reproject = true;          ///< project moved vertices onto the original surface
   double featureAngleDeg = 0;     ///< > 0: vertices on edges whose dihedral angle exceeds this stay fixed
-  double regularization = 1e-2;   ///< global: weight that keeps each vertex near its current position
+  double regularization = 0.1;    ///< global: weight that keeps each vertex near its current position
   double minFaceTurnCos = 0.2;    ///< a move is refused if an incident face normal turns beyond acos(this)
+  bool uniformEdgeLength = false; ///< global: target the mesh's mean edge length everywhere (the paper's d)
+                                  ///< instead of each vertex's 1-ring mean (keeps adaptive sizing)
+  double damping = 1.0;           ///< global: share of the solved displacement applied per round
 };
 
 struct RelaxReport {
@@ -111,6 +114,34 @@ bool MoveFolds(const VertexStar<MeshType>& st, typename MeshType::VertexType* v,
   return false;
 }
 
+/// Smallest angle (radians) of the faces around v.
+template <class MeshType>
+double MinAngleAround(const VertexStar<MeshType>& st) {
+  double mn = M_PI;
+  for (auto& c : st.corners)
+    for (int z = 0; z < 3; ++z) {
+      auto a = c.f->P((z + 1) % 3) - c.f->P(z), b = c.f->P((z + 2) % 3) - c.f->P(z);
+      double la = a.Norm(), lb = b.Norm();
+      if (la <= 0 || lb <= 0) return 0;
+      mn = std::min(mn, std::acos(std::max(-1.0, std::min(1.0, double(a.dot(b)) / (la * lb)))));
+    }
+  return mn;
+}
+
+/// A move is kept if it folds nothing and does not halve the smallest angle around the vertex
+/// (the simultaneous global solve can otherwise squeeze a single triangle).
+template <class MeshType>
+bool MoveHurts(const VertexStar<MeshType>& st, typename MeshType::VertexType* v, const typename MeshType::CoordType& p,
+               double minCos) {
+  if (MoveFolds<MeshType>(st, v, p, minCos)) return true;
+  const double before = MinAngleAround<MeshType>(st);
+  auto old = v->P();
+  v->P() = p;
+  const double after = MinAngleAround<MeshType>(st);
+  v->P() = old;
+  return after < 0.5 * before;
+}
+
 template <class MeshType>
 typename MeshType::CoordType VertexNormal(const VertexStar<MeshType>& st) {
   typename MeshType::CoordType n(0, 0, 0);
@@ -151,7 +182,7 @@ RelaxReport LocalRelax(MeshType& m, const std::vector<int>& region, const Surfac
       d -= n * (d.dot(n));  // tangential part only (the surface is kept by projection)
       CoordType p = vp->P() + d * ScalarType(opt.step);
       if (opt.reproject && original) p = CoordType::Construct(original->Closest(vcg::Point3f::Construct(p)));
-      if (relax_detail::MoveFolds<MeshType>(st, vp, p, opt.minFaceTurnCos)) {
+      if (relax_detail::MoveHurts<MeshType>(st, vp, p, opt.minFaceTurnCos)) {
         ++rep.rejected;
         continue;
       }
@@ -197,6 +228,7 @@ RelaxReport GlobalRelax(MeshType& m, const std::vector<int>& region, const Surfa
     double lsum = 0;
     long lcount = 0;
     std::vector<VertexStar<MeshType>> stars(static_cast<size_t>(n));
+    std::vector<double> scale(static_cast<size_t>(n), 0.0);  // mean 1-ring edge length
     for (int i = 0; i < n; ++i) {
       auto* vp = &m.vert[size_t(freeV[size_t(i)])];
       stars[size_t(i)] = StarOf<MeshType>(vp);
@@ -207,11 +239,17 @@ RelaxReport GlobalRelax(MeshType& m, const std::vector<int>& region, const Surfa
       t2[size_t(i)] = N.cross(t1[size_t(i)]);
       c[size_t(i)] = Eigen::Vector3d(vp->P()[0], vp->P()[1], vp->P()[2]);
       for (auto nb : stars[size_t(i)].neighbors) {
-        lsum += double((nb->P() - vp->P()).Norm());
+        const double l = double((nb->P() - vp->P()).Norm());
+        lsum += l;
+        scale[size_t(i)] += l;
         ++lcount;
       }
+      scale[size_t(i)] /= double(stars[size_t(i)].neighbors.size());
     }
-    const double d = lsum / double(std::max(1L, lcount));
+    // The paper's d is the mean edge length of the mesh; on adaptive meshes (edge lengths that
+    // vary over the surface) that fights the size gradation, so d_i is the mean edge length of
+    // the 1-ring of v_i, optionally blended with the global mean.
+    const double dGlobal = lsum / double(std::max(1L, lcount));
     std::vector<T> trip;
     std::vector<double> rhs;
     int row = 0;
@@ -239,6 +277,7 @@ RelaxReport GlobalRelax(MeshType& m, const std::vector<int>& region, const Surfa
         const int j = nbIdx[size_t(k)];
         const int uj = unknown[size_t(j)];
         // residual r = p_j - p_i - d u ; p_i = c_i + T_i x_i ; p_j = c_j + T_j x_j (or fixed)
+        const double d = opt.uniformEdgeLength ? dGlobal : scale[size_t(i)];
         Eigen::Vector3d r0 = pos(j) - c[size_t(i)] - d * u;
         for (int q = 0; q < 3; ++q) {
           trip.emplace_back(row + q, 2 * i, -t1[size_t(i)][q]);
@@ -264,11 +303,11 @@ RelaxReport GlobalRelax(MeshType& m, const std::vector<int>& region, const Surfa
     if (solver.info() != Eigen::Success) break;
     for (int i = 0; i < n; ++i) {
       auto* vp = &m.vert[size_t(freeV[size_t(i)])];
-      Eigen::Vector3d p = c[size_t(i)] + x[2 * i] * t1[size_t(i)] + x[2 * i + 1] * t2[size_t(i)];
+      Eigen::Vector3d p = c[size_t(i)] + opt.damping * (x[2 * i] * t1[size_t(i)] + x[2 * i + 1] * t2[size_t(i)]);
       CoordType q(typename CoordType::ScalarType(p.x()), typename CoordType::ScalarType(p.y()),
                   typename CoordType::ScalarType(p.z()));
       if (opt.reproject && original) q = CoordType::Construct(original->Closest(vcg::Point3f::Construct(q)));
-      if (relax_detail::MoveFolds<MeshType>(stars[size_t(i)], vp, q, opt.minFaceTurnCos)) {
+      if (relax_detail::MoveHurts<MeshType>(stars[size_t(i)], vp, q, opt.minFaceTurnCos)) {
         ++rep.rejected;
         continue;
       }
