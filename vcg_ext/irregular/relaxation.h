@@ -31,6 +31,7 @@ namespace vcg_ext {
 namespace irregular {
 
 enum class RelaxMode { Local = 0, Global = 1 };
+enum class RelaxSolver { ConjugateGradient = 0, SparseLDLT = 1 };
 
 struct RelaxOptions {
   RelaxMode mode = RelaxMode::Local;
@@ -42,6 +43,9 @@ struct RelaxOptions {
   double minFaceTurnCos = 0.2;    ///< a move is refused if an incident face normal turns beyond acos(this)
   bool uniformEdgeLength = false; ///< global: target the mesh's mean edge length everywhere (the paper's d)
                                   ///< instead of each vertex's 1-ring mean (keeps adaptive sizing)
+  RelaxSolver solver = RelaxSolver::ConjugateGradient;  ///< global: sparse solver
+  double solverTolerance = 1e-6;  ///< global, conjugate gradients: relative residual
+  int solverMaxIterations = 300;  ///< global, conjugate gradients
   double damping = 1.0;           ///< global: share of the solved displacement applied per round
 };
 
@@ -297,10 +301,26 @@ RelaxReport GlobalRelax(MeshType& m, const std::vector<int>& region, const Surfa
     auto ts = std::chrono::steady_clock::now();
     Eigen::SparseMatrix<double> AtA = A.transpose() * A;
     for (int k = 0; k < 2 * n; ++k) AtA.coeffRef(k, k) += opt.regularization;
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(AtA);
-    Eigen::VectorXd x = solver.solve(A.transpose() * b);
+    Eigen::VectorXd x;
+    Eigen::ComputationInfo info;
+    Eigen::VectorXd atb = A.transpose() * b;
+    if (opt.solver == RelaxSolver::SparseLDLT) {
+      Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(AtA);
+      x = solver.solve(atb);
+      info = solver.info();
+    } else {
+      // The regularized normal matrix is symmetric positive definite and well conditioned:
+      // conjugate gradients (Jacobi preconditioner) scale to millions of unknowns where the
+      // LDLT factorization fills in.
+      Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> solver;
+      solver.setTolerance(opt.solverTolerance);
+      solver.setMaxIterations(opt.solverMaxIterations);
+      solver.compute(AtA);
+      x = solver.solve(atb);
+      info = solver.info() == Eigen::NoConvergence ? Eigen::Success : solver.info();  // best effort is fine
+    }
     rep.solveSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - ts).count();
-    if (solver.info() != Eigen::Success) break;
+    if (info != Eigen::Success) break;
     for (int i = 0; i < n; ++i) {
       auto* vp = &m.vert[size_t(freeV[size_t(i)])];
       Eigen::Vector3d p = c[size_t(i)] + opt.damping * (x[2 * i] * t1[size_t(i)] + x[2 * i + 1] * t2[size_t(i)]);
