@@ -26,6 +26,7 @@
 #pragma once
 
 #include <algorithm>
+#include <functional>
 #include <map>
 #include <sstream>
 #include <string>
@@ -312,20 +313,48 @@ class AtomicOperations {
     return out;
   }
 
-  /// Candidate graph operation for SearchCancellation.
+  /// Candidate graph operation for FindAndApply.
   struct Candidate {
-    int kind;  // 0 flip (x, y); 1 collapse x into y
-    int x, y;
+    int kind;  // 0 flip (x, y); 1 collapse x into y; 2 split x along (x, y), (x, z)
+    int x, y, z;
   };
 
-  /// Tries, among flips of edges touching the given vertices and collapses of edges between
-  /// them, the first (in a deterministic order) that makes `cancelled` of the given irregular
-  /// vertices regular, leaves at most one new irregular vertex of valence `survivor`
-  /// (0 = none), and changes no other valence.
+  /// Cancellation test for SearchCancellation: `cancelled` irregular vertices disappear, at most
+  /// one of valence `survivor` (0 = none) remains, and no irregular vertex outside the group is
+  /// touched.
   AtomicOutcome SearchCancellation(AtomicOutcome& out, const std::vector<int>& group, int cancelled, int survivor,
                                    const std::string& what) {
-    // Valences and stars of the area (the group and its 1-ring), computed once: the search
-    // predicts every candidate's outcome from them without editing (sec. 6.1 rules).
+    AtomicOutcome found = FindAndApply(group, [&](const std::map<int, int>& before, const std::map<int, int>& after) {
+      int irregularBefore = 0, irregularAfter = 0, survivors = 0;
+      for (auto& kv : after) {
+        const int b = before.count(kv.first) ? before.at(kv.first) : 0;
+        const bool inGroup = std::find(group.begin(), group.end(), kv.first) != group.end();
+        if (b != 6 && b != 0) ++irregularBefore;
+        if (!inGroup && b != 6 && b != 0) return false;
+        if (kv.second != 6 && kv.second != 0) {
+          ++irregularAfter;
+          if (kv.second != survivor) return false;
+          ++survivors;
+        }
+      }
+      return irregularBefore - irregularAfter == cancelled && survivors == (survivor ? 1 : 0);
+    }, what, false);
+    if (found) return out = found;
+    return Refuse(out, Str("no single flip or collapse cancels these vertices: bring them closer first (",
+                           what.substr(0, what.find(' ')), " cancellation needs them within one edge of each other, "
+                           "as in the paper's figs. 7 and 8)"));
+  }
+
+ public:
+  /// Predicts the valence changes of every flip, collapse (and, if withSplits, vertex split)
+  /// around the group (its vertices and their neighbours) without editing (sec. 6.1 rules),
+  /// and applies the first, in a deterministic order, whose prediction passes `test(before,
+  /// after)` and whose group vertices are all touched. In `after`, a deleted vertex has valence
+  /// 0 and a vertex created by a split has index -1. O(size of the neighbourhood squared).
+  AtomicOutcome FindAndApply(const std::vector<int>& group,
+                             const std::function<bool(const std::map<int, int>&, const std::map<int, int>&)>& test,
+                             const std::string& what, bool withSplits = true) {
+    AtomicOutcome out;
     std::vector<int> area = group;
     for (int v : group) {
       VertexStar<MeshType> s = ed_.Star(v);
@@ -342,6 +371,7 @@ class AtomicOperations {
     struct Scored {
       Candidate c;
       int o[2];
+      int d1, d2;
     };
     std::vector<Scored> cands;
     for (int v : area) {
@@ -350,67 +380,69 @@ class AtomicOperations {
       const int d = int(s.neighbors.size());
       for (int k = 0; k < d; ++k) {
         const int w = ed_.Index(s.neighbors[size_t(k)]);
-        if (w < v) continue;  // each edge once; a collapse removes the higher index
-        Scored sc;
-        sc.o[0] = ed_.Index(s.neighbors[size_t((k + 1) % d)]);
-        sc.o[1] = ed_.Index(s.neighbors[size_t((k + d - 1) % d)]);
-        sc.c = Candidate{0, v, w};
-        cands.push_back(sc);
-        sc.c = Candidate{1, w, v};
-        cands.push_back(sc);
+        if (w > v) {  // each edge once; a collapse removes the higher index
+          Scored sc;
+          sc.o[0] = ed_.Index(s.neighbors[size_t((k + 1) % d)]);
+          sc.o[1] = ed_.Index(s.neighbors[size_t((k + d - 1) % d)]);
+          sc.d1 = sc.d2 = 0;
+          sc.c = Candidate{0, v, w, -1};
+          cands.push_back(sc);
+          sc.c = Candidate{1, w, v, -1};
+          cands.push_back(sc);
+        }
+        if (!withSplits) continue;
+        for (int l = 0; l < d; ++l) {
+          if (l == k) continue;
+          Scored sc;
+          sc.c = Candidate{2, v, w, ed_.Index(s.neighbors[size_t(l)])};
+          sc.d1 = ((l - k - 1) % d + d) % d;  // neighbours strictly between a = n_k and b = n_l
+          sc.d2 = d - 2 - sc.d1;
+          sc.o[0] = sc.o[1] = -1;
+          cands.push_back(sc);
+        }
       }
     }
     for (const Scored& sc : cands) {
       const Candidate& c = sc.c;
       const int* o = sc.o;
-      // every group member must be one of the four vertices the operation touches
+      std::vector<int> touched = c.kind == 2 ? std::vector<int>{c.x, c.y, c.z} : std::vector<int>{c.x, c.y, o[0], o[1]};
       bool covers = true;
-      for (int g : group) covers = covers && (g == c.x || g == c.y || g == o[0] || g == o[1]);
+      for (int g : group) covers = covers && std::find(touched.begin(), touched.end(), g) != touched.end();
       if (!covers) continue;
-      std::map<int, int> pred;
+      std::map<int, int> before, pred;
+      for (int t : touched) before[t] = val(t);
       const int dx = val(c.x), dy = val(c.y);
       if (c.kind == 0) {
         pred = {{c.x, dx - 1}, {c.y, dy - 1}, {o[0], val(o[0]) + 1}, {o[1], val(o[1]) + 1}};
-      } else {
+      } else if (c.kind == 1) {
         pred = {{c.x, 0}, {c.y, dx + dy - 4}, {o[0], val(o[0]) - 1}, {o[1], val(o[1]) - 1}};
+      } else {
+        pred = {{c.x, sc.d1 + 3}, {-1, sc.d2 + 3}, {c.y, dy + 1}, {c.z, val(c.z) + 1}};
       }
-      int irregularBefore = 0, irregularAfter = 0, groupRegularAfter = 0;
-      int newSurvivors = 0;
-      bool ok = true;
-      for (auto& kv : pred) {
-        const int before = val(kv.first);
-        const bool inGroup = std::find(group.begin(), group.end(), kv.first) != group.end();
-        if (before != 6) ++irregularBefore;
-        if (!inGroup && before != 6) ok = false;  // never disturb other irregular vertices
-        if (kv.second != 6 && kv.second != 0) ++irregularAfter;
-        if (inGroup && (kv.second == 6 || kv.second == 0)) ++groupRegularAfter;
-        if (kv.second != 6 && kv.second != 0) {
-          if (kv.second != survivor) ok = false;
-          ++newSurvivors;
-        }
-      }
-      if (!ok) continue;
-      if (irregularBefore - irregularAfter != cancelled) continue;
-      if (newSurvivors != (survivor ? 1 : 0)) continue;
-      (void)groupRegularAfter;
+      if (!test(before, pred)) continue;
       auto cp = ed_.Mark();
-      Result r = c.kind == 0 ? ed_.Flip(c.x, c.y) : ed_.Collapse(c.x, c.y);
+      int created = -1;
+      Result r = c.kind == 0 ? ed_.Flip(c.x, c.y) : c.kind == 1 ? ed_.Collapse(c.x, c.y) : ed_.Split(c.x, c.y, c.z, &created);
       if (!r) {
         ed_.RollbackTo(cp);
         continue;
       }
-      out.description = what + (c.kind == 0 ? Str(": flip edge (", c.x, ", ", c.y, ")")
-                                            : Str(": collapse vertex ", c.x, " into ", c.y));
+      out.description = what + (c.kind == 0   ? Str(": flip edge (", c.x, ", ", c.y, ")")
+                                : c.kind == 1 ? Str(": collapse vertex ", c.x, " into ", c.y)
+                                              : Str(": split vertex ", c.x, " along edges to ", c.y, " and ", c.z));
+      if (c.kind == 2) {
+        pred[created] = pred[-1];
+        pred.erase(-1);
+      }
       std::vector<int> left;
       for (auto& kv : pred)
         if (kv.second != 6 && kv.second != 0) left.push_back(kv.first);
       return Finish(out, r, cp, pred, left);
     }
-    return Refuse(out, Str("no single flip or collapse cancels these vertices: bring them closer first (",
-                           what.substr(0, what.find(' ')), " cancellation needs them within one edge of each other, "
-                           "as in the paper's figs. 7 and 8)"));
+    return Refuse(out, "no single flip, collapse or split around these vertices does it");
   }
 
+ private:
   Editor& ed_;
 };
 

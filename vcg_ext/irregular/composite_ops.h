@@ -1,0 +1,515 @@
+// filter_irregular: composite semantic operations (paper sec. 6.3 and 7), built from the
+// atomic operations of atomic_ops.h.
+//
+//  * Type change (sec. 6.3): split a vk (k > 7) into k-6 v7, a v4 (v3) into two (three) v5;
+//    aggregation back: a group of v7 (v5) becomes one higher (lower) valence vertex.
+//  * Pair movement (sec. 7.1): an adjacent 5-7 pair moves n steps along a straight line;
+//    a non-adjacent 5-7, 5-5 or 7-7 pair moves by the three-step pipeline of sec. 7.1.1:
+//    (1) one vertex moves one step and generates a 5-7 pair, (2) the generated pair is
+//    transported to the partner, (3) it cancels there, moving the partner one step.
+//  * Triple cancellation (sec. 7.2): a 5-7 pair of the triple is transported to the third
+//    vertex until the atomic removal applies; quadruple cancellation (sec. 7.3) likewise.
+//  * Generation (sec. 7.3): the inverse of cancellation; the new vertices are placed n steps
+//    apart.
+// Every composite operation is all or nothing: on failure the journal restores the mesh.
+// Each step is followed, optionally, by local relaxation of its 2-ring (sec. 8), which keeps
+// the triangles usable so the next step's fold check passes.
+#pragma once
+
+#include <algorithm>
+#include <functional>
+#include <limits>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "atomic_ops.h"
+#include "relaxation.h"
+
+namespace vcg_ext {
+namespace irregular {
+
+struct CompositeOptions {
+  bool relax = true;           ///< local relaxation of the 2-ring after every atomic step
+  int relaxIterations = 3;     ///< sweeps per step
+  int maxTransportSteps = 200; ///< bound on pair steps while transporting toward a partner
+  std::function<void(int, const char*)> progress;  ///< (percent, message), may be empty
+};
+
+struct CompositeOutcome {
+  Result result = Result::Fail("not applied");
+  std::vector<int> irregular;  ///< the irregular vertices the operation leaves
+  int atomicSteps = 0;         ///< atomic operations applied
+  std::string log;             ///< one line per step
+  explicit operator bool() const { return result.ok; }
+};
+
+template <class MeshType>
+class CompositeOperations {
+ public:
+  typedef MeshEditor<MeshType> Editor;
+  typedef typename MeshType::CoordType CoordType;
+
+  CompositeOperations(Editor& ed, const SurfaceProjector* original, CompositeOptions opt = CompositeOptions())
+      : ed_(ed), ops_(ed), original_(original), opt_(opt) {}
+
+  AtomicOperations<MeshType>& atomic() { return ops_; }
+
+  // ------------------------------------------------------------ type change (sec. 6.3)
+  /// Splits v (valence k > 7) into k-6 v7, or a v4 (v3) into two (three) v5.
+  CompositeOutcome ReduceTo57(int v) {
+    CompositeOutcome out;
+    auto cp = ed_.Mark();
+    if (!ed_.IsLive(v) || ed_.IsBoundary(v)) return Fail(out, cp, Str("vertex ", v, " is not an interior vertex"));
+    int d = ed_.Valence(v);
+    if (d == 5 || d == 6 || d == 7) {
+      out.result = Result::Ok();
+      if (d != 6) out.irregular = {v};
+      return out;
+    }
+    std::vector<int> produced;
+    if (d > 7) {
+      // Split along (v, n_i), (v, n_i+4): v keeps 3 neighbours between them and becomes a v6
+      // (3 + 3); the new vertex takes the rest (k - 2); n_i, n_i+4 gain one edge each.
+      int cur = v;
+      while (ed_.Valence(cur) > 7) {
+        const int k = ed_.Valence(cur);
+        VertexStar<MeshType> s = ed_.Star(cur);
+        int best = -1, bestScore = std::numeric_limits<int>::max();
+        for (int i = 0; i < k; ++i) {
+          // prefer regular ends (they become the new v7)
+          int a = ed_.Index(s.neighbors[size_t(i)]), b = ed_.Index(s.neighbors[size_t((i + 4) % k)]);
+          int score = std::abs(ed_.Valence(a) - 6) + std::abs(ed_.Valence(b) - 6);
+          if (score < bestScore) bestScore = score, best = i;
+        }
+        int a = ed_.Index(s.neighbors[size_t(best)]), b = ed_.Index(s.neighbors[size_t((best + 4) % k)]);
+        int created = -1;
+        // Split(w, a, b) keeps the neighbours from a to b for w: here b to a keeps k-5 neighbours.
+        Result r = ed_.Split(cur, b, a, &created);
+        if (!r) return Fail(out, cp, Str("type splitting of vertex ", v, " failed: ", r.reason));
+        ++out.atomicSteps;
+        Step(out, Str("split v", k, " ", cur, " along (", cur, ", ", a, "), (", cur, ", ", b, ")"), {cur, created, a, b});
+        for (int x : {a, b}) produced.push_back(x);
+        // the vertex that kept k-2 edges continues
+        cur = ed_.Valence(cur) > ed_.Valence(created) ? cur : created;
+        if (ed_.Valence(cur) == 7) produced.push_back(cur);
+      }
+    } else {
+      // v4 / v3: collapse v into a regular neighbour x: d(x) + d(v) - 4 = 6 (v4) or 5 (v3),
+      // and the two opposite vertices lose an edge (6 -> 5).
+      VertexStar<MeshType> s = ed_.Star(v);
+      Result last = Result::Fail("no neighbour fits");
+      bool done = false;
+      for (size_t i = 0; i < s.neighbors.size() && !done; ++i) {
+        const int x = ed_.Index(s.neighbors[i]);
+        if (ed_.Valence(x) != 6) continue;
+        int o[2];
+        ed_.Opposites(v, x, o);
+        if (ed_.Valence(o[0]) != 6 || ed_.Valence(o[1]) != 6) continue;
+        last = ed_.Collapse(v, x);
+        if (last) {
+          done = true;
+          ++out.atomicSteps;
+          Step(out, Str("collapse v", d, " ", v, " into ", x), {x, o[0], o[1]});
+          produced = {o[0], o[1]};
+          if (d == 3) produced.push_back(x);
+        }
+      }
+      if (!done)
+        return Fail(out, cp, Str("vertex ", v, " (v", d, ") has no regular neighbour with regular opposite vertices to "
+                                 "collapse into: ", last.reason));
+    }
+    std::sort(produced.begin(), produced.end());
+    produced.erase(std::unique(produced.begin(), produced.end()), produced.end());
+    for (int x : produced)
+      if (ed_.IsLive(x) && ed_.Valence(x) != 6) out.irregular.push_back(x);
+    out.result = Result::Ok();
+    return out;
+  }
+
+  /// Aggregation, the inverse of type splitting: the selected v7s (v5s) become one vertex of
+  /// valence 6 + their number (6 - their number). Searches one flip, collapse or split that does
+  /// it; the group must be within one edge of each other as type splitting leaves them.
+  CompositeOutcome Aggregate(const std::vector<int>& group) {
+    CompositeOutcome out;
+    auto cp = ed_.Mark();
+    if (group.size() < 2) return Fail(out, cp, "aggregation needs at least two vertices");
+    int n5 = 0, n7 = 0;
+    for (int v : group) {
+      if (!ed_.IsLive(v) || ed_.IsBoundary(v)) return Fail(out, cp, Str("vertex ", v, " is not an interior vertex"));
+      n5 += ed_.Valence(v) == 5;
+      n7 += ed_.Valence(v) == 7;
+    }
+    if (n5 != int(group.size()) && n7 != int(group.size()))
+      return Fail(out, cp, "aggregation merges only v7s (into a v8, v9, ...) or only v5s (into a v4 or v3)");
+    if (n5 > 3) return Fail(out, cp, "at most three v5 can merge (into a v3)");
+    const int target = n7 ? 6 + n7 : 6 - n5;
+    AtomicOutcome a = ops_.FindAndApply(group, [&](const std::map<int, int>& before, const std::map<int, int>& after) {
+      int made = 0;
+      for (auto& kv : after) {
+        const bool inGroup = std::find(group.begin(), group.end(), kv.first) != group.end();
+        const int b = before.count(kv.first) ? before.at(kv.first) : 0;
+        if (!inGroup && b != 6 && b != 0) return false;  // never disturb other irregular vertices
+        if (kv.second == 0 || kv.second == 6) continue;
+        if (kv.second != target) return false;
+        ++made;
+      }
+      for (int g : group)
+        if (!after.count(g)) return false;
+      return made == 1;
+    }, Str("aggregation into a v", target));
+    if (!a) return Fail(out, cp, Str("these vertices cannot be aggregated into one v", target, " by a single operation: ",
+                                      a.result.reason));
+    ++out.atomicSteps;
+    Step(out, a.description, a.irregular);
+    out.irregular = a.irregular;
+    out.result = Result::Ok();
+    return out;
+  }
+
+  // ------------------------------------------------------------ pair movement (sec. 7.1)
+  /// Moves an adjacent 5-7 pair `steps` steps: the first step goes in direction `dir`
+  /// (atomic_ops.h convention), the next ones continue in the same direction on the surface
+  /// (the step that best continues the first displacement). O(steps).
+  CompositeOutcome MoveAdjacentPair57(int v5, int v7, int dir, int steps) {
+    CompositeOutcome out;
+    auto cp = ed_.Mark();
+    CoordType heading(0, 0, 0);
+    for (int s = 0; s < steps; ++s) {
+      Progress(100 * s / std::max(1, steps), "Moving the 5-7 pair");
+      AtomicOutcome o;
+      if (s == 0) {
+        const CoordType before = Mid(v5, v7);
+        o = ops_.MovePair57(v5, v7, dir);
+        if (o) heading = Mid(o.irregular[0], o.irregular[1]) - before;
+      } else {
+        o = BestStep(v5, v7, heading);
+      }
+      if (!o) return Fail(out, cp, Str("step ", s + 1, " of ", steps, ": ", o.result.reason));
+      ++out.atomicSteps;
+      v5 = o.irregular[0];
+      v7 = o.irregular[1];
+      Step(out, o.description, {v5, v7});
+    }
+    out.irregular = {v5, v7};
+    out.result = Result::Ok();
+    return out;
+  }
+
+  /// Moves a pair (5-7, 5-5 or 7-7; adjacent or not) one step per repetition with the
+  /// pipeline of sec. 7.1.1: `lead` moves one step toward its neighbour k (counted from the
+  /// neighbour of smallest index) generating a 5-7 pair, the pair is transported to
+  /// `partner` and cancelled there, moving the partner one step.
+  CompositeOutcome MovePair(int lead, int partner, int k, int steps) {
+    CompositeOutcome out;
+    auto cp = ed_.Mark();
+    for (int v : {lead, partner})
+      if (!ed_.IsLive(v) || ed_.IsBoundary(v)) return Fail(out, cp, Str("vertex ", v, " is not an interior vertex"));
+    const int dl = ed_.Valence(lead), dp = ed_.Valence(partner);
+    if ((dl != 5 && dl != 7) || (dp != 5 && dp != 7))
+      return Fail(out, cp, "pair movement works on v5 and v7 (reduce other valences first with 'Reduce to Valence 5 and 7')");
+    if (dl != dp && ed_.Adjacent(lead, partner)) {
+      const int v5 = dl == 5 ? lead : partner, v7 = dl == 5 ? partner : lead;
+      return MoveAdjacentPair57(v5, v7, ((k % 6) + 6) % 6, steps);
+    }
+    for (int s = 0; s < steps; ++s) {
+      Progress(100 * s / std::max(1, steps), "Moving the pair");
+      // (1) the lead moves one step and generates an adjacent 5-7 pair
+      AtomicOutcome g = ops_.MoveWithPairGeneration(lead, ((k % ed_.Valence(lead)) + ed_.Valence(lead)) % ed_.Valence(lead));
+      if (!g) return Fail(out, cp, Str("step ", s + 1, ": the lead vertex cannot move that way: ", g.result.reason));
+      ++out.atomicSteps;
+      Step(out, g.description, g.irregular);
+      const int movedLead = g.irregular[0];
+      int p5 = -1, p7 = -1;
+      for (size_t i = 1; i < g.irregular.size(); ++i)
+        (ed_.Valence(g.irregular[i]) == 5 ? p5 : p7) = g.irregular[i];
+      // (2)+(3) transport the generated pair to the partner and cancel the triple there
+      int newPartner = -1;
+      Result t = TransportAndCancel(out, p5, p7, partner, &newPartner);
+      if (!t) return Fail(out, cp, Str("step ", s + 1, ": ", t.reason));
+      lead = movedLead;
+      partner = newPartner;
+    }
+    out.irregular = {lead, partner};
+    out.result = Result::Ok();
+    return out;
+  }
+
+  // ------------------------------------------------------------ cancellation (sec. 7.2, 7.3)
+  /// Cancels a 5-5-7 triple into one v5 or a 5-7-7 triple into one v7. The triple needs an
+  /// adjacent 5-7 pair; that pair is transported to the third vertex.
+  CompositeOutcome CancelTriple(const std::vector<int>& triple) {
+    CompositeOutcome out;
+    auto cp = ed_.Mark();
+    if (triple.size() != 3) return Fail(out, cp, "a triple cancellation needs exactly three vertices");
+    std::vector<int> d;
+    for (int v : triple) {
+      if (!ed_.IsLive(v) || ed_.IsBoundary(v)) return Fail(out, cp, Str("vertex ", v, " is not an interior vertex"));
+      d.push_back(ed_.Valence(v));
+    }
+    std::vector<int> sd = d;
+    std::sort(sd.begin(), sd.end());
+    if (sd != std::vector<int>{5, 5, 7} && sd != std::vector<int>{5, 7, 7})
+      return Fail(out, cp, "a triple cancellation needs a 5-5-7 or a 5-7-7 triple");
+    // already adjacent enough?
+    {
+      AtomicOutcome r = ops_.MoveWithPairRemoval(triple);
+      if (r) {
+        ++out.atomicSteps;
+        Step(out, r.description, r.irregular);
+        out.irregular = r.irregular;
+        out.result = Result::Ok();
+        return out;
+      }
+    }
+    // find an adjacent 5-7 pair in the triple; the third vertex is the target
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        if (i == j || d[size_t(i)] != 5 || d[size_t(j)] != 7 || !ed_.Adjacent(triple[size_t(i)], triple[size_t(j)]))
+          continue;
+        const int third = triple[size_t(3 - i - j)];
+        int survivor = -1;
+        Result t = TransportAndCancel(out, triple[size_t(i)], triple[size_t(j)], third, &survivor);
+        if (!t) return Fail(out, cp, t.reason);
+        out.irregular = {survivor};
+        out.result = Result::Ok();
+        return out;
+      }
+    return Fail(out, cp, "no two vertices of the triple form an adjacent 5-7 pair: move two of them together first "
+                         "(Move Pair), then cancel");
+  }
+
+  /// Cancels a 5-5-7-7 quadruple made of two adjacent 5-7 pairs: one pair is transported to
+  /// the other until the atomic quadruple removal applies. Refused when the two pairs cannot
+  /// annihilate (sec. 7.3: opposite sides of the enclosing polygon must match).
+  CompositeOutcome CancelQuadruple(const std::vector<int>& quad) {
+    CompositeOutcome out;
+    auto cp = ed_.Mark();
+    if (quad.size() != 4) return Fail(out, cp, "a quadruple cancellation needs exactly four vertices");
+    std::vector<int> v5, v7;
+    for (int v : quad) {
+      if (!ed_.IsLive(v) || ed_.IsBoundary(v)) return Fail(out, cp, Str("vertex ", v, " is not an interior vertex"));
+      (ed_.Valence(v) == 5 ? v5 : v7).push_back(v);
+      if (ed_.Valence(v) != 5 && ed_.Valence(v) != 7) return Fail(out, cp, "a quadruple is two v5 and two v7");
+    }
+    if (v5.size() != 2) return Fail(out, cp, "a quadruple is two v5 and two v7");
+    {
+      AtomicOutcome r = ops_.RemoveQuadruple(quad);
+      if (r) {
+        ++out.atomicSteps;
+        Step(out, r.description, {});
+        out.result = Result::Ok();
+        return out;
+      }
+    }
+    // pair up: (v5[0], partner) adjacent, the other pair adjacent too
+    int a5 = v5[0], b5 = v5[1], a7 = -1, b7 = -1;
+    if (ed_.Adjacent(a5, v7[0]) && ed_.Adjacent(b5, v7[1])) a7 = v7[0], b7 = v7[1];
+    else if (ed_.Adjacent(a5, v7[1]) && ed_.Adjacent(b5, v7[0])) a7 = v7[1], b7 = v7[0];
+    if (a7 < 0) return Fail(out, cp, "the quadruple must consist of two adjacent 5-7 pairs; move them into pairs first");
+    // transport pair (a5, a7) toward (b5, b7) until the removal applies
+    const CoordType target = Mid(b5, b7);
+    for (int s = 0; s < opt_.maxTransportSteps; ++s) {
+      AtomicOutcome r = ops_.RemoveQuadruple({a5, a7, b5, b7});
+      if (r) {
+        ++out.atomicSteps;
+        Step(out, r.description, {a5, b5});
+        out.result = Result::Ok();
+        return out;
+      }
+      AtomicOutcome o = StepToward(a5, a7, target, {b5, b7});
+      if (!o) break;
+      ++out.atomicSteps;
+      a5 = o.irregular[0];
+      a7 = o.irregular[1];
+      Step(out, o.description, {a5, a7});
+    }
+    return Fail(out, cp, "the two 5-7 pairs met but do not annihilate: they are not in the configuration of fig. 11 "
+                         "(sec. 7.3: a 5-7 pair and its mirror image cancel; two pairs with the same orientation do not)");
+  }
+
+  // ------------------------------------------------------------ generation (sec. 7.3)
+  /// A v5 (v7) becomes a 5-5-7 (5-7-7) triple; the generated 5-7 pair is moved `spacing`
+  /// steps away from it. k: direction as in MoveWithPairGeneration.
+  CompositeOutcome GenerateTriple(int v, int k, int spacing) {
+    CompositeOutcome out;
+    auto cp = ed_.Mark();
+    AtomicOutcome g = ops_.MoveWithPairGeneration(v, k);
+    if (!g) return Fail(out, cp, g.result.reason);
+    ++out.atomicSteps;
+    Step(out, g.description, g.irregular);
+    int p5 = -1, p7 = -1;
+    for (size_t i = 1; i < g.irregular.size(); ++i) (ed_.Valence(g.irregular[i]) == 5 ? p5 : p7) = g.irregular[i];
+    if (!MoveApart(out, p5, p7, g.irregular[0], spacing)) return Fail(out, cp, out.result.reason);
+    out.irregular = {g.irregular[0], p5, p7};
+    out.result = Result::Ok();
+    return out;
+  }
+
+  /// A regular vertex becomes a 5-5-7-7 quadruple; one of its 5-7 pairs is moved `spacing`
+  /// steps away from the other.
+  CompositeOutcome GenerateQuadruple(int v, int k, int spacing) {
+    CompositeOutcome out;
+    auto cp = ed_.Mark();
+    AtomicOutcome g = ops_.GenerateQuadruple(v, k, false);
+    if (!g) return Fail(out, cp, g.result.reason);
+    ++out.atomicSteps;
+    Step(out, g.description, g.irregular);
+    // g.irregular = {p, n_k, n_k-1, n_k+1}: pairs (p, n_k-1) and (n_k, n_k+1)
+    int a5 = g.irregular[0], a7 = g.irregular[2], b5 = g.irregular[1], b7 = g.irregular[3];
+    if (!MoveApart(out, a5, a7, Mid(b5, b7), spacing, {b5, b7})) return Fail(out, cp, out.result.reason);
+    out.irregular = {a5, a7, b5, b7};
+    out.result = Result::Ok();
+    return out;
+  }
+
+ private:
+  template <class... Args>
+  static std::string Str(const Args&... args) {
+    std::ostringstream o;
+    using expand = int[];
+    (void)expand{0, ((o << args), 0)...};
+    return o.str();
+  }
+
+  CompositeOutcome& Fail(CompositeOutcome& out, typename Editor::Checkpoint cp, const std::string& why) {
+    ed_.RollbackTo(cp);
+    out.result = Result::Fail(why);
+    out.irregular.clear();
+    return out;
+  }
+
+  void Progress(int pct, const char* what) {
+    if (opt_.progress) opt_.progress(pct, what);
+  }
+
+  void Step(CompositeOutcome& out, const std::string& what, const std::vector<int>& around) {
+    out.log += what + "\n";
+    RelaxAround(around);
+  }
+
+  void RelaxAround(const std::vector<int>& seeds) {
+    if (!opt_.relax || seeds.empty()) return;
+    std::vector<int> live;
+    for (int v : seeds)
+      if (ed_.IsLive(v)) live.push_back(v);
+    RelaxOptions ro;
+    ro.iterations = opt_.relaxIterations;
+    // Relaxation moves positions only; journal them so a failed composite rolls back exactly.
+    std::vector<int> ring = KRing(ed_.Mesh(), live, 2);
+    for (int v : ring) ed_.journal().SaveVertex(ed_.V(v));
+    for (int v : ring)
+      for (auto& c : ed_.Star(v).corners) ed_.journal().SaveFace(c.f);
+    LocalRelax(ed_.Mesh(), ring, original_, ro);
+  }
+
+  CoordType Mid(int a, int b) { return (ed_.V(a)->P() + ed_.V(b)->P()) / 2; }
+
+  /// The atomic pair move whose displacement best continues `heading`.
+  AtomicOutcome BestStep(int v5, int v7, const CoordType& heading) {
+    const CoordType from = Mid(v5, v7);
+    int best = -1;
+    double bestScore = -std::numeric_limits<double>::max();
+    for (int dir = 0; dir < 6; ++dir) {
+      auto cp = ed_.Mark();
+      AtomicOutcome o = ops_.MovePair57(v5, v7, dir);
+      if (o) {
+        CoordType d = Mid(o.irregular[0], o.irregular[1]) - from;
+        double score = double(d.dot(heading)) / (double(d.Norm()) * double(heading.Norm()) + 1e-30);
+        if (score > bestScore) bestScore = score, best = dir;
+      }
+      ed_.RollbackTo(cp);
+    }
+    if (best < 0) {
+      AtomicOutcome none;
+      none.result = Result::Fail("the pair is blocked in every direction (irregular vertices or folds around it)");
+      return none;
+    }
+    return ops_.MovePair57(v5, v7, best);
+  }
+
+  /// The atomic pair move that brings the pair's midpoint closest to target; never onto the
+  /// vertices of `avoid`.
+  AtomicOutcome StepToward(int v5, int v7, const CoordType& target, const std::vector<int>& avoid = {}) {
+    int best = -1;
+    double bestDist = double((Mid(v5, v7) - target).Norm());
+    for (int dir = 0; dir < 6; ++dir) {
+      auto cp = ed_.Mark();
+      AtomicOutcome o = ops_.MovePair57(v5, v7, dir);
+      if (o) {
+        bool clash = false;
+        for (int a : avoid) clash = clash || !ed_.IsLive(a);
+        double dist = double((Mid(o.irregular[0], o.irregular[1]) - target).Norm());
+        if (!clash && dist < bestDist) bestDist = dist, best = dir;
+      }
+      ed_.RollbackTo(cp);
+    }
+    if (best < 0) {
+      AtomicOutcome none;
+      none.result = Result::Fail("the 5-7 pair cannot get closer (blocked by irregular vertices, folds, or already as close as it can)");
+      return none;
+    }
+    return ops_.MovePair57(v5, v7, best);
+  }
+
+  /// Transports the 5-7 pair (p5, p7) toward `target` and cancels the triple it forms there
+  /// (sec. 7.1.1 steps 2-3, sec. 7.2). *survivor: the vertex that remains.
+  Result TransportAndCancel(CompositeOutcome& out, int p5, int p7, int target, int* survivor) {
+    for (int s = 0; s <= opt_.maxTransportSteps; ++s) {
+      AtomicOutcome r = ops_.MoveWithPairRemoval({p5, p7, target});
+      if (r) {
+        ++out.atomicSteps;
+        Step(out, r.description, r.irregular);
+        *survivor = r.irregular.empty() ? target : r.irregular[0];
+        return Result::Ok();
+      }
+      AtomicOutcome o = StepToward(p5, p7, ed_.V(target)->P(), {target});
+      if (!o) return Result::Fail(Str("transporting the 5-7 pair to vertex ", target, ": ", o.result.reason));
+      ++out.atomicSteps;
+      p5 = o.irregular[0];
+      p7 = o.irregular[1];
+      Step(out, o.description, {p5, p7});
+    }
+    return Result::Fail(Str("the 5-7 pair did not reach vertex ", target, " within ", opt_.maxTransportSteps, " steps"));
+  }
+
+  bool MoveApart(CompositeOutcome& out, int& p5, int& p7, int anchor, int spacing) {
+    return MoveApart(out, p5, p7, ed_.V(anchor)->P(), spacing, {anchor});
+  }
+  bool MoveApart(CompositeOutcome& out, int& p5, int& p7, CoordType anchor, int spacing, const std::vector<int>& keep) {
+    for (int s = 0; s < spacing; ++s) {
+      int best = -1;
+      double bestDist = -1;
+      for (int dir = 0; dir < 6; ++dir) {
+        auto cp = ed_.Mark();
+        AtomicOutcome o = ops_.MovePair57(p5, p7, dir);
+        bool ok = bool(o);
+        for (int k : keep) ok = ok && ed_.IsLive(k) && (ed_.Valence(k) == 5 || ed_.Valence(k) == 7);
+        if (ok) {
+          double dist = double((Mid(o.irregular[0], o.irregular[1]) - anchor).Norm());
+          if (dist > bestDist) bestDist = dist, best = dir;
+        }
+        ed_.RollbackTo(cp);
+      }
+      if (best < 0) {
+        out.result = Result::Fail(Str("the generated pair cannot move further apart after ", s, " of ", spacing, " steps"));
+        return false;
+      }
+      AtomicOutcome o = ops_.MovePair57(p5, p7, best);
+      ++out.atomicSteps;
+      p5 = o.irregular[0];
+      p7 = o.irregular[1];
+      Step(out, o.description, {p5, p7});
+    }
+    return true;
+  }
+
+  Editor& ed_;
+  AtomicOperations<MeshType> ops_;
+  const SurfaceProjector* original_;
+  CompositeOptions opt_;
+};
+
+}  // namespace irregular
+}  // namespace vcg_ext
