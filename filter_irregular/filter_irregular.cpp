@@ -14,6 +14,7 @@
 #include <vcg/complex/algorithms/update/topology.h>
 
 #include <vcg_ext/irregular/atomic_ops.h>
+#include <vcg_ext/irregular/composite_ops.h>
 #include <vcg_ext/irregular/legend.h>
 #include <vcg_ext/irregular/mesh_checks.h>
 #include <vcg_ext/irregular/quality.h>
@@ -23,7 +24,8 @@
 namespace irr = vcg_ext::irregular;
 
 FilterIrregularPlugin::FilterIrregularPlugin() {
-  typeList << FP_ANALYZE << FP_ATOMIC << FP_RELAX;
+  typeList << FP_ANALYZE << FP_ATOMIC << FP_RELAX << FP_REDUCE << FP_AGGREGATE << FP_MOVE_PAIR << FP_CANCEL_TRIPLE
+           << FP_CANCEL_QUADRUPLE << FP_GENERATE;
   for (FilterIDType t : types()) actionList << new QAction(filterName(t), this);
 }
 
@@ -34,6 +36,12 @@ QString FilterIrregularPlugin::filterName(FilterIDType id) const {
     case FP_ANALYZE: return "Irregular Vertices: Analyze";
     case FP_ATOMIC: return "Irregular Vertices: Atomic Operation";
     case FP_RELAX: return "Irregular Vertices: Relax";
+    case FP_REDUCE: return "Irregular Vertices: Reduce to Valence 5 and 7";
+    case FP_AGGREGATE: return "Irregular Vertices: Aggregate";
+    case FP_MOVE_PAIR: return "Irregular Vertices: Move Pair";
+    case FP_CANCEL_TRIPLE: return "Irregular Vertices: Cancel Triple";
+    case FP_CANCEL_QUADRUPLE: return "Irregular Vertices: Cancel Quadruple";
+    case FP_GENERATE: return "Irregular Vertices: Generate";
   }
   return "";
 }
@@ -75,6 +83,36 @@ QString FilterIrregularPlugin::filterInfo(FilterIDType id) const {
              "tangent plane, with a sparse LDLT solver. Moved vertices are projected back onto the mesh as "
              "it was before the filter. Vertices on sharp creases stay fixed. Logs triangle quality and the "
              "Hausdorff distance to the input before and after.";
+    case FP_REDUCE:
+      return "Type splitting (Li et al., sec. 6.3): every irregular vertex of valence k > 7 becomes k-6 v7 "
+             "(vertex splits), every v4 (v3) two (three) v5 (an edge collapse), so the other operations, "
+             "which work on v5 and v7, apply. Vertices that cannot be reduced (e.g. no suitable neighbour) "
+             "are kept and listed in the log. The resulting irregular vertices are selected.";
+    case FP_AGGREGATE:
+      return "Type aggregation (sec. 6.3), the inverse of type splitting: the selected v7s merge into one "
+             "v8, v9, ... and the selected v5s into one v4 (two) or v3 (three). They must be as close as "
+             "type splitting leaves them (one graph operation apart).";
+    case FP_MOVE_PAIR:
+      return "Moves the selected pair of irregular vertices (sec. 7.1). An adjacent 5-7 pair translates "
+             "'steps' steps: the first in 'direction' (0..5 counter-clockwise around the v5 from the v7), the "
+             "next ones straight on; or, with 'toward point', toward the picked point until it gets no "
+             "closer. A non-adjacent 5-7 pair, or a 5-5 or 7-7 pair, moves by the pipeline of sec. 7.1.1: the "
+             "lead vertex moves one step toward its neighbour 'direction' (counted counter-clockwise from "
+             "its neighbour of smallest index) and generates a 5-7 pair, which travels to the partner and "
+             "cancels there, moving the partner: 5-5 and 7-7 pairs move symmetrically (sec. 7.1.2). "
+             "A single irregular vertex cannot move alone (Theorem 5.1).";
+    case FP_CANCEL_TRIPLE:
+      return "Triple cancellation (sec. 7.2): the selected 5-5-7 triple becomes one v5, a 5-7-7 triple one v7. "
+             "An adjacent 5-7 pair of the triple is moved to the third vertex, then the atomic removal "
+             "applies. A 5-7 pair alone cannot be cancelled (Theorem 5.5).";
+    case FP_CANCEL_QUADRUPLE:
+      return "Quadruple cancellation (sec. 7.3): the selected 5-5-7-7 quadruple, two adjacent 5-7 pairs, "
+             "disappears: one pair is moved to the other until they annihilate. Refused when the two pairs "
+             "cannot annihilate (they must be mirror images, sec. 7.3).";
+    case FP_GENERATE:
+      return "Generation (sec. 7.3), the inverse of cancellation: the selected v5 (v7) becomes a 5-5-7 (5-7-7) "
+             "triple, or the selected regular vertex a 5-5-7-7 quadruple; the generated 5-7 pair is then "
+             "moved 'spacing' steps away.";
   }
   return "";
 }
@@ -84,6 +122,7 @@ MeshFilterInterface::FilterClass FilterIrregularPlugin::getClass(QAction* a) {
     case FP_ANALYZE: return FilterClass(Quality | Measure | Selection);
     case FP_ATOMIC: return FilterClass(Remeshing | Selection);
     case FP_RELAX: return FilterClass(Smoothing | Remeshing);
+    default: return FilterClass(Remeshing | Selection);
   }
   return Generic;
 }
@@ -145,6 +184,43 @@ void FilterIrregularPlugin::initParameterSet(QAction* a, MeshModel&, RichParamet
                              "Vertices on edges whose dihedral angle exceeds this stay fixed, so sharp creases "
                              "survive. 0 disables."));
       break;
+    case FP_REDUCE:
+      par.addParam(RichEnum("scope", 0, QStringList() << "All irregular vertices" << "Selected vertices", "Vertices",
+                            "Reduce every irregular vertex of valence other than 5 and 7, or only the selected ones."));
+      break;
+    case FP_MOVE_PAIR:
+      par.addParam(RichEnum("lead", 0, QStringList() << "Lower valence" << "Higher valence" << "Lower index" << "Higher index",
+                            "Leading vertex", "Non-adjacent pairs: which selected vertex moves first (its partner follows)."));
+      par.addParam(RichInt("direction", 0, "Direction", "Adjacent 5-7 pair: 0..5 counter-clockwise around the v5 "
+                                                        "from the v7. Otherwise: neighbour index of the lead vertex, "
+                                                        "counted counter-clockwise from its neighbour of smallest index."));
+      par.addParam(RichInt("steps", 1, "Steps", "How many steps the pair moves."));
+      par.addParam(RichBool("towardPoint", false, "Toward point",
+                            "Adjacent 5-7 pair: move toward 'point' until it gets no closer (steps and direction are ignored)."));
+      par.addParam(RichPoint3f("point", Point3m(0, 0, 0), "Point",
+                               "Where the pair should go: in the dialog, use Get / Surf. Pos. and double-click the mesh."));
+      break;
+    case FP_GENERATE:
+      par.addParam(RichEnum("kind", 0, QStringList() << "Triple from a v5 or v7" << "Quadruple from a regular vertex",
+                            "Generate", "What the selected vertex becomes."));
+      par.addParam(RichInt("direction", 0, "Direction",
+                           "Neighbour index, counted counter-clockwise from the neighbour of smallest index."));
+      par.addParam(RichInt("spacing", 2, "Spacing", "Steps the generated 5-7 pair moves away."));
+      break;
+    default: break;
+  }
+  switch (ID(a)) {
+    case FP_REDUCE:
+    case FP_AGGREGATE:
+    case FP_MOVE_PAIR:
+    case FP_CANCEL_TRIPLE:
+    case FP_CANCEL_QUADRUPLE:
+    case FP_GENERATE:
+      par.addParam(RichBool("relax", true, "Relax after editing",
+                            "Local relaxation of the 2-ring around each step, projected onto the surface as it "
+                            "was before the filter (paper sec. 8)."));
+      break;
+    default: break;
   }
 }
 
@@ -371,6 +447,115 @@ bool FilterIrregularPlugin::relax(MeshModel& mm, const RichParameterList& par, v
   return true;
 }
 
+bool FilterIrregularPlugin::composite(QAction* a, MeshModel& mm, const RichParameterList& par, vcg::CallBackPos* cb) {
+  CMeshO& m = mm.cm;
+  irr::Result input = irr::DiagnoseInput(m).Verdict();
+  if (!input) return refuse(QString::fromStdString(input.reason));
+  std::vector<int> sel = SelectedVertices(m);
+  const bool relax = par.getBool("relax");
+  std::unique_ptr<irr::SurfaceProjector> projector;
+  if (relax) projector.reset(new irr::SurfaceProjector(m));
+  irr::MeshEditor<CMeshO> ed(m);
+  irr::CompositeOptions co;
+  co.relax = relax;
+  if (cb) co.progress = [cb](int pct, const char* what) { cb(pct, what); };
+  irr::CompositeOperations<CMeshO> ops(ed, projector.get(), co);
+  auto valences = [&](const std::vector<int>& vs) {
+    std::vector<int> d;
+    for (int v : vs) d.push_back(ed.Valence(v));
+    std::sort(d.begin(), d.end());
+    return d;
+  };
+  auto count = [&](size_t n, const QString& what) -> bool {
+    if (sel.size() == n) return true;
+    refuse(QString("%1 needs exactly %2 selected vertices; %3 are selected.").arg(what).arg(n).arg(sel.size()));
+    return false;
+  };
+  irr::CompositeOutcome out;
+  QString what = filterName(ID(a));
+  switch (ID(a)) {
+    case FP_REDUCE: {
+      std::vector<int> todo;
+      irr::ValenceField<CMeshO> vf = irr::ComputeValences(m);
+      const bool selectedOnly = par.getEnum("scope") == 1;
+      for (size_t i = 0; i < m.vert.size(); ++i) {
+        if (m.vert[i].IsD() || !vf.referenced[i] || vf.boundary[i]) continue;
+        if (vf.valence[i] >= 5 && vf.valence[i] <= 7) continue;
+        if (selectedOnly && !m.vert[i].IsS()) continue;
+        todo.push_back(int(i));
+      }
+      if (todo.empty()) return refuse("There is no interior vertex of valence other than 5, 6 and 7 to reduce.");
+      int reduced = 0;
+      QStringList failed;
+      for (size_t t = 0; t < todo.size(); ++t) {
+        if (cb && t % 64 == 0) cb(int(100 * t / todo.size()), "Reducing to valence 5 and 7");
+        if (!ed.IsLive(todo[t])) continue;
+        irr::CompositeOutcome r = ops.ReduceTo57(todo[t]);
+        if (r) {
+          ++reduced;
+          out.atomicSteps += r.atomicSteps;
+          out.irregular.insert(out.irregular.end(), r.irregular.begin(), r.irregular.end());
+        } else if (failed.size() < 10) {
+          failed << QString("%1: %2").arg(todo[t]).arg(QString::fromStdString(r.result.reason));
+        } else {
+          failed << "...";
+        }
+        ed.Commit();
+      }
+      if (reduced == 0) return refuse("No vertex could be reduced. " + failed.join("; "));
+      Log("Reduced %d of %d vertices to valence 5 and 7", reduced, int(todo.size()));
+      if (!failed.isEmpty()) Log(GLLogStream::WARNING, "Not reduced (kept as they were): %s", qUtf8Printable(failed.join("; ")));
+      out.result = irr::Result::Ok();
+      break;
+    }
+    case FP_AGGREGATE:
+      out = ops.Aggregate(sel);
+      break;
+    case FP_MOVE_PAIR: {
+      if (sel.size() == 1) return refuse(QString::fromStdString(irr::ImpossibleRequest::MoveSingleVertex()));
+      if (!count(2, "Moving a pair")) return false;
+      int lead = sel[0], partner = sel[1];
+      const int how = par.getEnum("lead");
+      const bool swap = (how == 0 && ed.Valence(lead) > ed.Valence(partner)) ||
+                        (how == 1 && ed.Valence(lead) < ed.Valence(partner)) || how == 3;
+      if (swap) std::swap(lead, partner);
+      if (par.getBool("towardPoint")) {
+        const int v5 = ed.Valence(lead) == 5 ? lead : partner, v7 = v5 == lead ? partner : lead;
+        out = ops.MovePair57Toward(v5, v7, par.getPoint3m("point"));
+      } else {
+        out = ops.MovePair(lead, partner, par.getInt("direction"), std::max(1, par.getInt("steps")));
+      }
+      break;
+    }
+    case FP_CANCEL_TRIPLE:
+      if (sel.size() == 2 && valences(sel) == std::vector<int>{5, 7})
+        return refuse(QString::fromStdString(irr::ImpossibleRequest::CancelPair57()));
+      if (!count(3, "A triple cancellation")) return false;
+      out = ops.CancelTriple(sel);
+      break;
+    case FP_CANCEL_QUADRUPLE:
+      if (sel.size() == 2 && valences(sel) == std::vector<int>{5, 7})
+        return refuse(QString::fromStdString(irr::ImpossibleRequest::CancelPair57()));
+      if (!count(4, "A quadruple cancellation")) return false;
+      out = ops.CancelQuadruple(sel);
+      break;
+    case FP_GENERATE:
+      if (!count(1, "Generation")) return false;
+      out = par.getEnum("kind") == 0 ? ops.GenerateTriple(sel[0], par.getInt("direction"), std::max(0, par.getInt("spacing")))
+                                     : ops.GenerateQuadruple(sel[0], par.getInt("direction"), std::max(0, par.getInt("spacing")));
+      break;
+  }
+  if (!out.result) return refuse(QString::fromStdString(out.result.reason));
+  for (auto& v : m.vert) v.ClearS();
+  for (int v : out.irregular)
+    if (ed.IsLive(v)) m.vert[size_t(v)].SetS();
+  FinishEdit(m);
+  Log("%s: %d atomic steps", qUtf8Printable(what), out.atomicSteps);
+  if (!out.log.empty() && out.atomicSteps <= 50) Log("Steps:\n%s", out.log.c_str());
+  paintAndLog(mm, true, 0, 0, true);
+  return true;
+}
+
 bool FilterIrregularPlugin::applyFilter(QAction* a, MeshDocument& md, const RichParameterList& par,
                                         vcg::CallBackPos* cb) {
   MeshModel* mm = md.mm();
@@ -379,6 +564,7 @@ bool FilterIrregularPlugin::applyFilter(QAction* a, MeshDocument& md, const Rich
     case FP_ANALYZE: return analyze(*mm, par);
     case FP_ATOMIC: return atomic(*mm, par);
     case FP_RELAX: return relax(*mm, par, cb);
+    default: return composite(a, *mm, par, cb);
   }
   return refuse("Unknown filter.");
 }

@@ -106,19 +106,19 @@ class CompositeOperations {
         if (ed_.Valence(x) != 6) continue;
         int o[2];
         ed_.Opposites(v, x, o);
-        if (ed_.Valence(o[0]) != 6 || ed_.Valence(o[1]) != 6) continue;
+        // the opposite vertices lose an edge: a v5 there would become a v4
+        if (ed_.Valence(o[0]) < 6 || ed_.Valence(o[1]) < 6) continue;
         last = ed_.Collapse(v, x);
         if (last) {
           done = true;
           ++out.atomicSteps;
           Step(out, Str("collapse v", d, " ", v, " into ", x), {x, o[0], o[1]});
-          produced = {o[0], o[1]};
-          if (d == 3) produced.push_back(x);
+          produced = {o[0], o[1], x};
         }
       }
       if (!done)
-        return Fail(out, cp, Str("vertex ", v, " (v", d, ") has no regular neighbour with regular opposite vertices to "
-                                 "collapse into: ", last.reason));
+        return Fail(out, cp, Str("vertex ", v, " (v", d, ") has no regular neighbour to collapse into whose opposite "
+                                 "vertices have valence 6 or more: ", last.reason));
     }
     std::sort(produced.begin(), produced.end());
     produced.erase(std::unique(produced.begin(), produced.end()), produced.end());
@@ -192,6 +192,28 @@ class CompositeOperations {
       v7 = o.irregular[1];
       Step(out, o.description, {v5, v7});
     }
+    out.irregular = {v5, v7};
+    out.result = Result::Ok();
+    return out;
+  }
+
+  /// Moves an adjacent 5-7 pair step by step toward a point (e.g. picked on the surface) until
+  /// no step brings it closer, at most maxTransportSteps steps.
+  CompositeOutcome MovePair57Toward(int v5, int v7, const CoordType& target) {
+    CompositeOutcome out;
+    auto cp = ed_.Mark();
+    if (ed_.Valence(v5) != 5 || ed_.Valence(v7) != 7 || !ed_.Adjacent(v5, v7))
+      return Fail(out, cp, "moving toward a point works on an adjacent 5-7 pair");
+    for (int s = 0; s < opt_.maxTransportSteps; ++s) {
+      Progress(100 * s / opt_.maxTransportSteps, "Moving the 5-7 pair toward the point");
+      AtomicOutcome o = StepToward(v5, v7, target);
+      if (!o) break;
+      ++out.atomicSteps;
+      v5 = o.irregular[0];
+      v7 = o.irregular[1];
+      Step(out, o.description, {v5, v7});
+    }
+    if (out.atomicSteps == 0) return Fail(out, cp, "the pair cannot get any closer to the point");
     out.irregular = {v5, v7};
     out.result = Result::Ok();
     return out;
