@@ -487,10 +487,17 @@ bool FilterIrregularPlugin::composite(QAction* a, MeshModel& mm, const RichParam
       if (todo.empty()) return refuse("There is no interior vertex of valence other than 5, 6 and 7 to reduce.");
       int reduced = 0;
       QStringList failed;
+      const size_t initial = todo.size();
       for (size_t t = 0; t < todo.size(); ++t) {
-        if (cb && t % 64 == 0) cb(int(100 * t / todo.size()), "Reducing to valence 5 and 7");
+        if (cb && t % 64 == 0) cb(int(100 * std::min(t, initial) / initial), "Reducing to valence 5 and 7");
         if (!ed.IsLive(todo[t])) continue;
+        const int d = ed.Valence(todo[t]);
+        if (d >= 5 && d <= 7) continue;
         irr::CompositeOutcome r = ops.ReduceTo57(todo[t]);
+        // a split end of valence 7 becomes a v8: reduce it too (bounded: each pass lowers valences)
+        if (r && !selectedOnly && todo.size() < 4 * initial)
+          for (int x : r.irregular)
+            if (ed.IsLive(x) && (ed.Valence(x) > 7 || ed.Valence(x) < 5)) todo.push_back(x);
         if (r) {
           ++reduced;
           out.atomicSteps += r.atomicSteps;
@@ -503,7 +510,7 @@ bool FilterIrregularPlugin::composite(QAction* a, MeshModel& mm, const RichParam
         ed.Commit();
       }
       if (reduced == 0) return refuse("No vertex could be reduced. " + failed.join("; "));
-      Log("Reduced %d of %d vertices to valence 5 and 7", reduced, int(todo.size()));
+      Log("Reduced %d vertices to valence 5 and 7 (%d asked)", reduced, int(initial));
       if (!failed.isEmpty()) Log(GLLogStream::WARNING, "Not reduced (kept as they were): %s", qUtf8Printable(failed.join("; ")));
       out.result = irr::Result::Ok();
       break;

@@ -78,9 +78,15 @@ class CompositeOperations {
         VertexStar<MeshType> s = ed_.Star(cur);
         int best = -1, bestScore = std::numeric_limits<int>::max();
         for (int i = 0; i < k; ++i) {
-          // prefer regular ends (they become the new v7)
+          // the ends gain an edge: a regular end becomes one of the new v7 (the type split of
+          // sec. 6.3); a v5 end would become regular (it would absorb a v5 nearby: second
+          // choice); a v7 end would become a v8 (avoid)
           int a = ed_.Index(s.neighbors[size_t(i)]), b = ed_.Index(s.neighbors[size_t((i + 4) % k)]);
-          int score = std::abs(ed_.Valence(a) - 6) + std::abs(ed_.Valence(b) - 6);
+          auto cost = [&](int x) {
+            const int after = ed_.Valence(x) + 1;
+            return after == 7 ? 0 : after == 6 ? 1 : 10;
+          };
+          int score = cost(a) + cost(b);
           if (score < bestScore) bestScore = score, best = i;
         }
         int a = ed_.Index(s.neighbors[size_t(best)]), b = ed_.Index(s.neighbors[size_t((best + 4) % k)]);
@@ -175,7 +181,7 @@ class CompositeOperations {
   CompositeOutcome MoveAdjacentPair57(int v5, int v7, int dir, int steps) {
     CompositeOutcome out;
     auto cp = ed_.Mark();
-    CoordType heading(0, 0, 0);
+    CoordType heading(0, 0, 0);  // the last step's displacement: "straight on" on a curved surface
     for (int s = 0; s < steps; ++s) {
       Progress(100 * s / std::max(1, steps), "Moving the 5-7 pair");
       AtomicOutcome o;
@@ -184,7 +190,15 @@ class CompositeOperations {
         o = ops_.MovePair57(v5, v7, dir);
         if (o) heading = Mid(o.irregular[0], o.irregular[1]) - before;
       } else {
-        o = BestStep(v5, v7, heading);
+        // Repeating the same atomic move parallel-transports the pair (sec. 6.2, fig. 6); when
+        // that is blocked, take the move that best continues the way so far.
+        const CoordType before = Mid(v5, v7);
+        o = ops_.MovePair57(v5, v7, dir);
+        if (!o) o = BestStep(v5, v7, heading);
+        if (o) {
+          CoordType d = Mid(o.irregular[0], o.irregular[1]) - before;
+          if (d.Norm() > 0) heading = heading.Normalize() + d.Normalize();
+        }
       }
       if (!o) return Fail(out, cp, Str("step ", s + 1, " of ", steps, ": ", o.result.reason));
       ++out.atomicSteps;
