@@ -83,6 +83,7 @@ class Run:
 def run(input_mesh, filters_or_script, out_dir=None, mask=("vc", "vq", "vf"), timeout=600):
     """Runs the staged meshlabserver on input_mesh with a list of Filters or an .mlx path."""
     out_dir = out_dir or tempfile.mkdtemp(prefix="fi_")
+    os.makedirs(out_dir, exist_ok=True)
     if not os.path.isabs(input_mesh):
         input_mesh = os.path.join(DATA, input_mesh)
     if isinstance(filters_or_script, str):
