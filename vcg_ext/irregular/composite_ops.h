@@ -213,7 +213,7 @@ class CompositeOperations {
 
   /// Moves an adjacent 5-7 pair step by step toward a point (e.g. picked on the surface) until
   /// no step brings it closer, at most maxTransportSteps steps.
-  CompositeOutcome MovePair57Toward(int v5, int v7, const CoordType& target) {
+  CompositeOutcome MovePair57Toward(int v5, int v7, CoordType target) {
     CompositeOutcome out;
     auto cp = ed_.Mark();
     if (ed_.Valence(v5) != 5 || ed_.Valence(v7) != 7 || !ed_.Adjacent(v5, v7))
@@ -467,7 +467,9 @@ class CompositeOperations {
 
   /// The atomic pair move that brings the pair's midpoint closest to target; never onto the
   /// vertices of `avoid`.
-  AtomicOutcome StepToward(int v5, int v7, const CoordType& target, const std::vector<int>& avoid = {}) {
+  // `target` by value: callers pass a vertex position, and a vertex split reallocates the
+  // vertex vector under it.
+  AtomicOutcome StepToward(int v5, int v7, CoordType target, const std::vector<int>& avoid = {}) {
     int best = -1;
     double bestDist = double((Mid(v5, v7) - target).Norm());
     for (int dir = 0; dir < 6; ++dir) {
