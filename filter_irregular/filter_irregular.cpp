@@ -80,7 +80,7 @@ QString FilterIrregularPlugin::filterInfo(FilterIDType id) const {
              "<b>Local</b>: vertices move one at a time in their tangent plane toward the centroid of "
              "their neighbours (Turk 1992). <b>Global</b>: solves the quadratic energy of eq. 5 "
              "(uniform edge lengths, equal angles around each vertex) with each vertex constrained to its "
-             "tangent plane, with a sparse LDLT solver. Moved vertices are projected back onto the mesh as "
+             "tangent plane, with Eigen's conjugate gradient solver. Moved vertices are projected back onto the mesh as "
              "it was before the filter. Vertices on sharp creases stay fixed. Logs triangle quality and the "
              "Hausdorff distance to the input before and after.";
     case FP_REDUCE:

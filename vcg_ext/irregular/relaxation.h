@@ -6,10 +6,11 @@
 //    in their tangent plane toward the centroid of their neighbours, then are projected back
 //    onto the original surface. Cheap enough to run on the k-ring of an edit after every step.
 //  * GlobalRelax (eq. 5): minimizes sum_i sum_{j in N_i} |p_j - (p_i + d u_ij)|^2, where d is
-//    the mean edge length and u_ij splits the tangent plane of v_i into equal angles
+//    the mean edge length of v_i's 1-ring (the paper's global mean fights the size gradation of
+//    adaptive meshes; see README) and u_ij splits the tangent plane of v_i into equal angles
 //    (alpha_ij = alpha_0 + k_j 2 pi / valence, alpha_0 the best rotation). Each vertex is
 //    constrained to its current tangent plane (two unknowns per vertex), the quadratic
-//    problem is solved with Eigen's sparse LDLT, and vertices are projected back onto the
+//    problem is solved with Eigen's conjugate gradients (sparse LDLT optional), and vertices are projected back onto the
 //    original surface. Iterated.
 // Both refuse a vertex move that would turn an incident triangle over (fold), and keep
 // vertices on sharp creases fixed when a feature angle is given.
