@@ -1,0 +1,613 @@
+// filter_irregular: automatic reduction of the number of irregular vertices, built only from
+// the paper's operations (Li et al., sec. 6.2, 6.3, 7).
+//
+// What a designer of the paper does by hand, as a deterministic greedy loop:
+//   1. type change (sec. 6.3): every vertex of valence <= 4 or >= 8 is split into v5 / v7;
+//   2. local cancellation: wherever a single flip or collapse removes irregular vertices (an
+//      adjacent 5-5-7 / 5-7-7 triple becomes one v5 / v7, an adjacent 5-5-7-7 quadruple
+//      disappears: the atomic removals of sec. 6.2), it is applied;
+//   3. transport (sec. 7.1, 7.2): an adjacent 5-7 pair is moved by pair steps toward the
+//      nearest other irregular vertices, within a travel bound, until a removal applies there;
+//      a transport that meets nothing to cancel is undone;
+//   4. steps 2-3 repeat with a growing travel distance; a final global relaxation (sec. 8)
+//      evens out the triangles.
+// Every edit is followed by local relaxation of its neighbourhood and is undone when it would
+// leave a triangle worse than the angle bound (this is what keeps the irregular vertices the
+// surface needs: a v5 on an ear tip cannot be cancelled without squeezing the triangles there)
+// or leave the input surface by more than the Hausdorff budget.
+//
+// Preconditions: a manifold, consistently oriented triangle mesh with FF and VF adjacency up to
+// date (see mesh_checks.h). Boundary vertices are never edited. Postconditions: the mesh is a
+// valid 2-manifold with the same topology; on interruption (progress callback returns false)
+// the mesh is exactly as it was.
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <functional>
+#include <map>
+#include <queue>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "composite_ops.h"
+#include "quality.h"
+
+namespace vcg_ext {
+namespace irregular {
+
+struct ReductionOptions {
+  int targetCount = 0;                  ///< stop once this many irregular vertices remain (0: as few as possible)
+  double hausdorffBudgetPercent = 0.5;  ///< an edit whose faces leave the input surface by more (percent of its
+                                        ///< bounding-box diagonal) is undone
+  int maxTravel = 12;                   ///< most pair steps a 5-7 pair is transported to meet a partner
+  double minAngleDeg = 30;              ///< an edit is undone if, after local relaxation, a triangle around it has
+                                        ///< a smaller angle than this (unless one already had before the edit)
+ int glideTravel = 30;                 ///< most steps a pair glides straight on looking for a partner
+  int targetsPerPair = 4;               ///< nearest irregular vertices a pair tries to reach, per round
+  std::vector<char> frozen;             ///< per vertex index, 1: never touched by an edit (protected selection);
+                                        ///< vertices created later are free
+  int localRelaxIterations = 3;         ///< sweeps of local relaxation of the 2-ring after each step
+  bool globalRelaxAtEnd = true;         ///< global relaxation (eq. 5) of the whole mesh at the end
+  int globalRelaxRounds = 3;            ///< solve-and-project rounds of the final global relaxation
+  double timeLimitSeconds = 60;         ///< stop editing (keeping what was done) after this long
+  std::function<bool(int, const char*)> progress;  ///< (percent, stage); returning false interrupts and rolls back
+};
+
+struct ReductionReport {
+  Result result = Result::Fail("not run");
+  std::map<int, int> histogramBefore, histogramAfter;  ///< interior valence -> count
+  int irregularBefore = 0, irregularAfter = 0;
+  int typeSplits = 0;         ///< vertices of valence <= 4 or >= 8 reduced to 5/7
+  int localCancellations = 0; ///< atomic removals applied where they were
+  int transports = 0;         ///< pair transports that ended in a cancellation
+  int glides = 0;             ///< pairs that glided straight on into a cancellation
+  int pairSteps = 0;          ///< pair steps of those transports
+  int splitAbsorptions = 0;   ///< stretched dislocations split into two pairs that were both cancelled
+  int undone = 0;             ///< edits undone (angle, Hausdorff or fold)
+  bool timeLimitReached = false;
+  bool interrupted = false;
+  double seconds = 0;
+  explicit operator bool() const { return result.ok; }
+};
+
+template <class MeshType>
+class AutomaticReduction {
+ public:
+  typedef MeshEditor<MeshType> Editor;
+  typedef typename MeshType::CoordType CoordType;
+  typedef typename MeshType::FaceType FaceType;
+
+  /// original: the input surface (edits are projected on it and measured against it).
+  AutomaticReduction(MeshType& m, const SurfaceProjector& original, ReductionOptions opt = ReductionOptions())
+      : m_(m), original_(original), opt_(std::move(opt)), ed_(m), comp_(ed_, &original, Quiet()), ops_(comp_.atomic()) {
+    budget_ = opt_.hausdorffBudgetPercent / 100.0 * double(original.Diagonal());
+  }
+
+  ReductionReport Run() {
+    ReductionReport rep;
+    t0_ = std::chrono::steady_clock::now();
+    const auto start = ed_.Mark();
+    Histogram(rep.histogramBefore, rep.irregularBefore);
+    bool go = Stage(rep, 0, "Splitting high and low valences") && ReduceTypes(rep);
+    // Growing travel: cheap local cancellations everywhere first, so the long transports only
+    // run for what is left.
+    if (getenv("QUADFIRST")) {
+      maxSurvivors_ = 0;
+      for (int travel : {0, 2, 4}) go = go && Sweep(rep, travel);
+      maxSurvivors_ = 1 << 20;
+    }
+    for (int travel = 0; go && travel <= opt_.maxTravel;) {
+      int before = CountIrregular();
+      go = Stage(rep, 10 + 70 * travel / std::max(1, opt_.maxTravel), "Cancelling triples and quadruples") &&
+           Sweep(rep, travel);
+      if (!go || Done()) break;
+      if (CountIrregular() == before) travel = travel == 0 ? 2 : travel + 2;
+    }
+    if (!rep.interrupted && opt_.globalRelaxAtEnd) {
+      go = Stage(rep, 90, "Global relaxation");
+      if (go) FinalRelax();
+    }
+    if (rep.interrupted) {
+      ed_.RollbackTo(start);
+      rep.result = Result::Fail("interrupted: the mesh is unchanged");
+      return rep;
+    }
+    ed_.Commit();
+    vcg::tri::Allocator<MeshType>::CompactEveryVector(m_);
+    vcg::tri::UpdateTopology<MeshType>::FaceFace(m_);
+    vcg::tri::UpdateTopology<MeshType>::VertexFace(m_);
+    Histogram(rep.histogramAfter, rep.irregularAfter);
+    rep.seconds = Elapsed();
+    rep.result = Result::Ok();
+    return rep;
+  }
+
+ private:
+  static CompositeOptions Quiet() {
+    CompositeOptions o;
+    o.relax = true;
+    return o;
+  }
+
+  double Elapsed() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
+  }
+
+  /// Reports progress; false (and rep.interrupted) if the caller asked to stop.
+  bool Stage(ReductionReport& rep, int pct, const char* what) {
+    if (opt_.progress && !opt_.progress(std::min(99, pct), what)) {
+      rep.interrupted = true;
+      return false;
+    }
+    if (Elapsed() > opt_.timeLimitSeconds) {
+      rep.timeLimitReached = true;
+      return false;
+    }
+    return true;
+  }
+
+  bool Done() { return opt_.targetCount > 0 && CountIrregular() <= opt_.targetCount; }
+
+  /// Interior irregular vertices, from one O(F) pass.
+  int CountIrregular() {
+    ValenceField<MeshType> vf = ComputeValences(m_);
+    int n = 0;
+    for (size_t i = 0; i < m_.vert.size(); ++i) n += !vf.boundary[i] && vf.IsIrregular(i);
+    return n;
+  }
+
+  void Histogram(std::map<int, int>& h, int& irregular) {
+    h.clear();
+    irregular = 0;
+    for (size_t i = 0; i < m_.vert.size(); ++i) {
+      if (!ed_.IsLive(int(i)) || ed_.IsBoundary(int(i))) continue;
+      const int d = ed_.Valence(int(i));
+      ++h[d];
+      irregular += d != 6;
+    }
+  }
+
+  bool IsInteriorIrregular(int v) { return ed_.IsLive(v) && !ed_.IsBoundary(v) && ed_.Valence(v) != 6; }
+  bool Frozen(int v) const { return v >= 0 && size_t(v) < opt_.frozen.size() && opt_.frozen[size_t(v)]; }
+
+  // ------------------------------------------------------------ 1. type change (sec. 6.3)
+  bool ReduceTypes(ReductionReport& rep) {
+    for (size_t i = 0; i < m_.vert.size(); ++i) {
+      const int v = int(i);
+      if (!IsInteriorIrregular(v) || Frozen(v)) continue;
+      const int d = ed_.Valence(v);
+      if (d == 5 || d == 7) continue;
+      Guard g(*this, {v});
+      CompositeOutcome o = comp_.ReduceTo57(v);
+      if (o && g.Accept(o.irregular)) ++rep.typeSplits;
+      else ++rep.undone;
+    }
+    return true;
+  }
+
+  // ------------------------------------------------------------ 2-3. cancellation sweep
+  /// One pass over the irregular vertices: local cancellations; with travel > 0 also pair
+  /// transports of up to `travel` steps. False if interrupted or out of time.
+  bool Sweep(ReductionReport& rep, int travel) {
+    const size_t n = m_.vert.size();
+    for (size_t i = 0; i < n && i < m_.vert.size(); ++i) {
+      const int v = int(i);
+      if ((i & 1023) == 0 && !Stage(rep, int(10 + 70 * i / n / std::max(1, opt_.maxTravel) * std::max(1, travel)),
+                                    travel == 0 ? "Cancelling adjacent triples and quadruples"
+                                                : "Moving pairs to cancel them"))
+        return false;
+      if ((i & 255) == 0 && Done()) return true;
+      if (!IsInteriorIrregular(v) || Frozen(v)) continue;
+      if (CancelAround(rep, v)) continue;
+      if (travel == 0) continue;
+      if (ed_.Valence(v) == 5 && Transport(rep, v, travel)) continue;
+      if (Isolated(v)) SplitAndAbsorb(rep, v, std::max(2, travel));
+    }
+    return true;
+  }
+
+  /// Count-reducing test for FindAndApply: the operation removes 2 or 4 irregular vertices
+  /// among those it touches, leaves only valences 5-7, and touches no frozen vertex. These
+  /// are exactly the atomic removals of sec. 6.2 (triple into one vertex, quadruple).
+  bool Reduces(const std::map<int, int>& before, const std::map<int, int>& after) const {
+    int irrBefore = 0, irrAfter = 0;
+    for (auto& kv : before) {
+      if (Frozen(kv.first)) return false;
+      if (kv.second != 6 && std::find(exclude_.begin(), exclude_.end(), kv.first) != exclude_.end()) return false;
+      irrBefore += kv.second != 6;
+    }
+    for (auto& kv : after) {
+      if (kv.second == 0) continue;
+      if (kv.second < 5 || kv.second > 7) return false;
+      irrAfter += kv.second != 6;
+    }
+    return irrAfter <= irrBefore - 2 && irrAfter <= maxSurvivors_;
+  }
+
+  /// Applies a removal around v if one exists and keeps it if the result is good enough.
+  bool CancelAround(ReductionReport& rep, int v) {
+    Guard g(*this, {v});
+    AtomicOutcome o = ops_.FindAndApply(
+        {v}, [&](const std::map<int, int>& b, const std::map<int, int>& a) { return Reduces(b, a); },
+        "cancellation", false);
+    if (!o) return false;
+    std::vector<int> touched;
+    for (auto& kv : o.changes)
+      if (kv.second != 0) touched.push_back(kv.first);
+    Relax(touched);
+    if (!g.Accept(touched)) {
+      ++rep.undone;
+      return false;
+    }
+    ++rep.localCancellations;
+    return true;
+  }
+
+  /// Transports a 5-7 pair containing v5 toward the nearest irregular vertices (graph
+  /// distance <= travel), one pair step at a time, until a removal applies next to it.
+  bool Transport(ReductionReport& rep, int v5, int travel) {
+    for (auto* nb : ed_.Star(v5).neighbors) {
+      const int w = ed_.Index(nb);
+      if (ed_.Valence(w) == 7 && !Frozen(w)) return Transport(rep, v5, w, travel);
+    }
+    return false;
+  }
+
+  /// Transports the adjacent 5-7 pair (v5, v7) to a cancellation: toward the nearest
+  /// irregular vertices first, then gliding straight on. True if a removal happened; the
+  /// vertices it changed are added to *touchedOut.
+  bool Transport(ReductionReport& rep, int v5, int v7, int travel, std::vector<int>* touchedOut = nullptr) {
+    std::vector<int> targets = NearestIrregular({v5, v7}, travel, opt_.targetsPerPair);
+    for (int t : targets) {
+      Guard g(*this, {v5, v7});
+      int a = v5, b = v7, steps = 0;
+      std::vector<int> touched{a, b};
+      bool cancelled = false;
+      for (int s = 0; s < travel + 2 && !cancelled; ++s) {
+        AtomicOutcome o = StepCloser(a, b, ed_.V(t)->P());
+        if (!o) {
+          // no step gets closer: the pair is next to the target but on the wrong side for a
+          // removal; one more step in any direction may set it up
+          cancelled = StepAndCancel(a, b, touched);
+          steps += cancelled;
+          break;
+        }
+        ++steps;
+        a = o.irregular[0];
+        b = o.irregular[1];
+        for (auto& kv : o.changes)
+          if (kv.second != 0) touched.push_back(kv.first);
+        Relax({a, b});
+          cancelled = RemovalAt({a, b}, touched);
+      }
+      if (cancelled && g.Accept(touched)) {
+        if (touchedOut) touchedOut->insert(touchedOut->end(), touched.begin(), touched.end());
+        ++rep.transports;
+        rep.pairSteps += steps;
+        return true;
+      }
+      if (cancelled) ++rep.undone;
+      g.Undo();
+    }
+    // No irregular vertex nearby takes the pair: let it glide straight on (repeating the same
+    // pair move parallel-transports it, sec. 6.2) until it meets one that does. This is what
+    // empties the walls of 5-7 pairs between differently oriented regular patches.
+    for (int dir : {1, 4, 0, 5, 2, 3}) {
+      Guard g(*this, {v5, v7});
+      int a = v5, b = v7, steps = 0;
+      std::vector<int> touched{a, b};
+      bool cancelled = false;
+      for (int s = 0; s < opt_.glideTravel && !cancelled; ++s) {
+        AtomicOutcome o = ops_.MovePair57(a, b, dir);
+        bool ok = bool(o);
+        for (auto& kv : o.changes) ok = ok && !Frozen(kv.first);
+        if (!ok) {
+          cancelled = StepAndCancel(a, b, touched);
+          steps += cancelled;
+          break;
+        }
+        ++steps;
+        a = o.irregular[0];
+        b = o.irregular[1];
+        for (auto& kv : o.changes)
+          if (kv.second != 0) touched.push_back(kv.first);
+        Relax({a, b});
+        cancelled = RemovalAt({a, b}, touched);
+      }
+      if (cancelled && g.Accept(touched)) {
+        if (touchedOut) touchedOut->insert(touchedOut->end(), touched.begin(), touched.end());
+        ++rep.glides;
+        rep.pairSteps += steps;
+        return true;
+      }
+      if (cancelled) ++rep.undone;
+      g.Undo();
+    }
+    return false;
+  }
+
+  bool Isolated(int v) {
+    for (auto* nb : ed_.Star(v).neighbors)
+      if (ed_.Valence(ed_.Index(nb)) != 6) return false;
+    return true;
+  }
+
+  /// An isolated v5 / v7 and an isolated vertex w of the other type a few edges away form a
+  /// stretched dislocation that no single pair move can carry. v steps toward w with 5-7
+  /// pair generation (sec. 6.2), and each generated pair is transported away until it cancels
+  /// elsewhere (sec. 7.2); once v is next to w the two form an adjacent 5-7 pair, which is
+  /// transported to a cancellation in turn. Kept only if that last cancellation happens (net:
+  /// two irregular vertices fewer), otherwise undone.
+  bool SplitAndAbsorb(ReductionReport& rep, int v, int radius) {
+    const int dv = ed_.Valence(v);
+    std::vector<int> near = NearestIrregular({v}, radius, 1, dv == 5 ? 7 : 5);
+    if (near.empty()) return false;
+    const int w = near[0];
+    const ReductionReport saved = rep;
+    Guard g(*this, {v, w});
+    std::vector<int> touched{v, w};
+    int cur = v;
+    for (int hop = 0; hop <= radius && !ed_.Adjacent(cur, w); ++hop) {
+      std::unordered_map<int, int> dist = Distances(w, radius + 1);
+      const int here = dist.count(cur) ? dist[cur] : radius + 2;
+      const int d = ed_.Valence(cur);
+      int next = -1;
+      for (int k = 0; k < d && next < 0; ++k) {
+        // the neighbour the vertex moves to must be closer to w
+        const int to = ops_.NeighbourFrom(cur, -1, d == 5 ? k : k + 1);
+        if (to < 0 || !dist.count(to) || dist[to] >= here) continue;
+        auto cp = ed_.Mark();
+        const size_t mark = touched.size();
+        AtomicOutcome gen = ops_.MoveWithPairGeneration(cur, k);
+        dbg_[0]++;
+        if (!gen) continue;
+        dbg_[1]++;
+        for (auto& kv : gen.changes)
+          if (kv.second != 0) touched.push_back(kv.first);
+        Relax(touched);
+        const int moved = gen.irregular[0];
+        int p5 = gen.irregular[1], p7 = gen.irregular[2];
+        if (ed_.Valence(p5) != 5) std::swap(p5, p7);
+        // a removal of the generated pair against the moved vertex would only undo the step
+        exclude_ = {moved, w};
+        const bool away = Transport(rep, p5, p7, opt_.maxTravel, &touched);
+        exclude_.clear();
+        if (away) {
+          next = moved;
+          dbg_[2]++;
+        } else {
+          touched.resize(mark);
+          ed_.RollbackTo(cp);
+        }
+      }
+      if (next < 0) break;
+      cur = next;
+    }
+    if (ed_.IsLive(cur) && ed_.IsLive(w) && ed_.Adjacent(cur, w) && ed_.Valence(cur) + ed_.Valence(w) == 12) {
+      const int a5 = ed_.Valence(cur) == 5 ? cur : w, a7 = a5 == cur ? w : cur;
+      if (Transport(rep, a5, a7, opt_.maxTravel, &touched) && g.Accept(touched)) {
+        dbg_[3]++;
+        ++rep.splitAbsorptions;
+        return true;
+      }
+    }
+    rep = saved;
+    g.Undo();
+    return false;
+  }
+
+  /// Graph distances from v, up to radius.
+  std::unordered_map<int, int> Distances(int v, int radius) {
+    std::unordered_map<int, int> dist{{v, 0}};
+    std::vector<int> frontier{v};
+    for (int r = 1; r <= radius; ++r) {
+      std::vector<int> next;
+      for (int x : frontier)
+        for (auto* nb : ed_.Star(x).neighbors) {
+          const int y = ed_.Index(nb);
+          if (dist.emplace(y, r).second) next.push_back(y);
+        }
+      frontier.swap(next);
+    }
+    return dist;
+  }
+
+  /// Applies a removal (sec. 6.2) involving one of the vertices, if one exists; adds what it
+  /// changed to touched and relaxes there.
+  bool RemovalAt(const std::vector<int>& vs, std::vector<int>& touched) {
+    for (int x : vs) {
+      if (!ed_.IsLive(x)) continue;
+      AtomicOutcome c = ops_.FindAndApply(
+          {x}, [&](const std::map<int, int>& bf, const std::map<int, int>& af) { return Reduces(bf, af); },
+          "cancellation", false);
+      if (!c) continue;
+      for (auto& kv : c.changes)
+        if (kv.second != 0) touched.push_back(kv.first);
+      Relax(touched);
+      return true;
+    }
+    return false;
+  }
+
+  /// One pair step, in the first of the six directions after which a removal applies.
+  bool StepAndCancel(int v5, int v7, std::vector<int>& touched) {
+    for (int dir = 0; dir < 6; ++dir) {
+      auto cp = ed_.Mark();
+      const size_t mark = touched.size();
+      AtomicOutcome o = ops_.MovePair57(v5, v7, dir);
+      bool ok = bool(o);
+      if (ok)
+        for (auto& kv : o.changes) ok = ok && !Frozen(kv.first);
+      if (ok) {
+        for (auto& kv : o.changes)
+          if (kv.second != 0) touched.push_back(kv.first);
+        if (RemovalAt({o.irregular[0], o.irregular[1]}, touched)) return true;
+      }
+      touched.resize(mark);
+      ed_.RollbackTo(cp);
+    }
+    return false;
+  }
+
+  /// The pair step (one of the six of sec. 6.2) after which the pair's midpoint is closest to
+  /// `goal`, if it gets closer; refused steps (blocked, folds, frozen) are skipped.
+  AtomicOutcome StepCloser(int v5, int v7, CoordType goal) {
+    auto mid = [&](int a, int b) { return (ed_.V(a)->P() + ed_.V(b)->P()) / 2; };
+    double best = double((mid(v5, v7) - goal).Norm());
+    int bestDir = -1;
+    for (int dir = 0; dir < 6; ++dir) {
+      auto cp = ed_.Mark();
+      AtomicOutcome o = ops_.MovePair57(v5, v7, dir);
+      bool ok = bool(o);
+      if (ok)
+        for (auto& kv : o.changes) ok = ok && !Frozen(kv.first);
+      if (ok) {
+        const double d = double((mid(o.irregular[0], o.irregular[1]) - goal).Norm());
+        if (d < best) best = d, bestDir = dir;
+      }
+      ed_.RollbackTo(cp);
+    }
+    if (bestDir < 0) return AtomicOutcome();
+    return ops_.MovePair57(v5, v7, bestDir);
+  }
+
+  /// Irregular vertices (not in `from`) within `radius` edges of `from`, nearest first.
+  std::vector<int> NearestIrregular(const std::vector<int>& from, int radius, int count, int valence = 0) {
+    std::unordered_map<int, int> dist;
+    std::queue<int> q;
+    for (int v : from) dist[v] = 0, q.push(v);
+    std::vector<int> found;
+    while (!q.empty() && int(found.size()) < count) {
+      const int v = q.front();
+      q.pop();
+      if (dist[v] >= radius) continue;
+      VertexStar<MeshType> s = ed_.Star(v);
+      std::vector<int> next;
+      for (auto* nb : s.neighbors) next.push_back(ed_.Index(nb));
+      std::sort(next.begin(), next.end());  // deterministic order
+      for (int w : next) {
+        if (dist.count(w)) continue;
+        dist[w] = dist[v] + 1;
+        q.push(w);
+        if (IsInteriorIrregular(w) && !Frozen(w) && (valence == 0 || ed_.Valence(w) == valence) &&
+            int(found.size()) < count)
+          found.push_back(w);
+      }
+    }
+    return found;
+  }
+
+  // ------------------------------------------------------------ geometry
+  void Relax(const std::vector<int>& seeds) {
+    std::vector<int> live;
+    for (int v : seeds)
+      if (ed_.IsLive(v)) live.push_back(v);
+    if (live.empty()) return;
+    std::vector<int> ring = KRing(m_, live, 2), movable;
+    for (int v : ring)
+      if (!Frozen(v)) movable.push_back(v);
+    for (int v : movable) {
+      ed_.journal().SaveVertex(ed_.V(v));
+      for (auto& c : ed_.Star(v).corners) ed_.journal().SaveFace(c.f);
+    }
+    RelaxOptions ro;
+    ro.iterations = opt_.localRelaxIterations;
+    LocalRelax(m_, movable, &original_, ro);
+  }
+
+  /// Smallest angle (degrees) of the faces around the 2-ring of the seeds.
+  double MinAngleAround(const std::vector<int>& seeds) {
+    std::vector<int> live;
+    for (int v : seeds)
+      if (ed_.IsLive(v)) live.push_back(v);
+    double mn = 180;
+    for (int v : KRing(m_, live, 2))
+      for (auto& c : ed_.Star(v).corners) mn = std::min(mn, MinAngle(c.f));
+    return mn;
+  }
+
+  static double MinAngle(const FaceType* f) {
+    double mn = 180;
+    for (int z = 0; z < 3; ++z) {
+      auto a = f->cP((z + 1) % 3) - f->cP(z), b = f->cP((z + 2) % 3) - f->cP(z);
+      const double la = a.Norm(), lb = b.Norm();
+      const double c = la > 0 && lb > 0 ? double(a.dot(b)) / (la * lb) : 1;
+      mn = std::min(mn, std::acos(std::max(-1.0, std::min(1.0, c))) * 180 / M_PI);
+    }
+    return mn;
+  }
+
+  /// Largest distance from the input surface of the faces around the seeds, sampled at
+  /// vertices, edge midpoints and centroids (the edited-to-input side of the Hausdorff
+  /// distance; the vertices themselves lie on the input after projection).
+  double DeviationAround(const std::vector<int>& seeds) {
+    std::vector<int> live;
+    for (int v : seeds)
+      if (ed_.IsLive(v)) live.push_back(v);
+    double mx = 0;
+    auto probe = [&](const CoordType& p) {
+      float d = 0;
+      original_.Closest(vcg::Point3f::Construct(p), &d);
+      mx = std::max(mx, double(d));
+    };
+    for (int v : KRing(m_, live, 1))
+      for (auto& c : ed_.Star(v).corners) {
+        const FaceType* f = c.f;
+        probe((f->cP(0) + f->cP(1) + f->cP(2)) / 3);
+        probe((f->cP(c.z) + f->cP((c.z + 1) % 3)) / 2);
+      }
+    return mx;
+  }
+
+  /// Guards one edit: remembers the checkpoint and the angle quality before; Accept() keeps
+  /// the edit if the neighbourhood is still good (angle bound, Hausdorff budget), otherwise
+  /// rolls back.
+  struct Guard {
+    AutomaticReduction& r;
+    typename Editor::Checkpoint cp;
+    double angleBefore;
+    Guard(AutomaticReduction& ar, const std::vector<int>& around)
+        : r(ar), cp(ar.ed_.Mark()), angleBefore(ar.MinAngleAround(around)) {}
+    bool Accept(const std::vector<int>& touched) {
+      const double after = r.MinAngleAround(touched);
+      if (after < std::min(r.opt_.minAngleDeg, angleBefore) || r.DeviationAround(touched) > r.budget_) {
+        Undo();
+        return false;
+      }
+      return true;
+    }
+    void Undo() { r.ed_.RollbackTo(cp); }
+  };
+
+  void FinalRelax() {
+    std::vector<int> all;
+    for (size_t i = 0; i < m_.vert.size(); ++i)
+      if (ed_.IsLive(int(i)) && !Frozen(int(i))) all.push_back(int(i));
+    for (int v : all) ed_.journal().SaveVertex(ed_.V(v));
+    for (auto& f : m_.face)
+      if (!f.IsD()) ed_.journal().SaveFace(&f);
+    RelaxOptions ro;
+    ro.mode = RelaxMode::Global;
+    ro.iterations = opt_.globalRelaxRounds;
+    irregular::Relax(m_, all, &original_, ro);
+  }
+
+  MeshType& m_;
+  const SurfaceProjector& original_;
+  ReductionOptions opt_;
+  Editor ed_;
+  CompositeOperations<MeshType> comp_;
+  AtomicOperations<MeshType>& ops_;
+  double budget_ = 0;
+  std::vector<int> exclude_;  ///< Reduces(): irregular vertices a removal must not involve
+ public:
+  long dbg_[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+ private:
+  int maxSurvivors_ = 1 << 20;  ///< Reduces(): most irregular vertices a removal may leave
+  std::chrono::steady_clock::time_point t0_;
+};
+
+}  // namespace irregular
+}  // namespace vcg_ext
