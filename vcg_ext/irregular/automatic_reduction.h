@@ -45,12 +45,16 @@ struct ReductionOptions {
   double minAngleDeg = 30;              ///< an edit is undone if, after local relaxation, a triangle around it has
                                         ///< a smaller angle than this (unless one already had before the edit)
  int glideTravel = 30;                 ///< most steps a pair glides straight on looking for a partner
+  int maxSweeps = 12;                   ///< passes over the irregular vertices
+  double minSweepGainPercent = 1;       ///< stop when a pass removes no more than this share
   int targetsPerPair = 4;               ///< nearest irregular vertices a pair tries to reach, per round
   std::vector<char> frozen;             ///< per vertex index, 1: never touched by an edit (protected selection);
                                         ///< vertices created later are free
   int localRelaxIterations = 3;         ///< sweeps of local relaxation of the 2-ring after each step
-  bool globalRelaxAtEnd = true;         ///< global relaxation (eq. 5) of the whole mesh at the end
+  RelaxMode finalRelax = RelaxMode::Local;  ///< final relaxation of the whole mesh: local sweeps, or a global
+                                            ///< solve (eq. 5) followed by local sweeps
   int globalRelaxRounds = 3;            ///< solve-and-project rounds of the final global relaxation
+  int finalLocalSweeps = 5;             ///< local sweeps over the whole mesh at the end (0: none)
   double timeLimitSeconds = 60;         ///< stop editing (keeping what was done) after this long
   std::function<bool(int, const char*)> progress;  ///< (percent, stage); returning false interrupts and rolls back
 };
@@ -66,6 +70,7 @@ struct ReductionReport {
   int pairSteps = 0;          ///< pair steps of those transports
   int splitAbsorptions = 0;   ///< stretched dislocations split into two pairs that were both cancelled
   int undone = 0;             ///< edits undone (angle, Hausdorff or fold)
+  bool globalRelaxUndone = false;  ///< the final global solve lowered the smallest angle and was undone
   bool timeLimitReached = false;
   bool interrupted = false;
   double seconds = 0;
@@ -93,21 +98,22 @@ class AutomaticReduction {
     bool go = Stage(rep, 0, "Splitting high and low valences") && ReduceTypes(rep);
     // Growing travel: cheap local cancellations everywhere first, so the long transports only
     // run for what is left.
-    if (getenv("QUADFIRST")) {
-      maxSurvivors_ = 0;
-      for (int travel : {0, 2, 4}) go = go && Sweep(rep, travel);
-      maxSurvivors_ = 1 << 20;
-    }
-    for (int travel = 0; go && travel <= opt_.maxTravel;) {
-      int before = CountIrregular();
-      go = Stage(rep, 10 + 70 * travel / std::max(1, opt_.maxTravel), "Cancelling triples and quadruples") &&
-           Sweep(rep, travel);
+    // Sweeps: local removals only until they stop paying, then with transports, until a
+    // sweep removes nothing (or a small share) more.
+    for (int sweep = 0, travel = 0; go && sweep < opt_.maxSweeps; ++sweep) {
+      const int before = CountIrregular();
+      go = Stage(rep, 10 + 70 * sweep / opt_.maxSweeps, "Cancelling triples and quadruples") && Sweep(rep, travel);
       if (!go || Done()) break;
-      if (CountIrregular() == before) travel = travel == 0 ? 2 : travel + 2;
+      const int removed = before - CountIrregular();
+      if (removed * 100 <= before * opt_.minSweepGainPercent) {
+        if (travel > 0) break;
+        travel = opt_.maxTravel;
+      }
     }
-    if (!rep.interrupted && opt_.globalRelaxAtEnd) {
-      go = Stage(rep, 90, "Global relaxation");
-      if (go) FinalRelax();
+    if (!rep.interrupted) {
+      // the final relaxation runs even when the time limit stopped the editing
+      if (!opt_.progress || opt_.progress(90, "Relaxing")) FinalRelax();
+      else rep.interrupted = true;
     }
     if (rep.interrupted) {
       ed_.RollbackTo(start);
@@ -119,6 +125,7 @@ class AutomaticReduction {
     vcg::tri::UpdateTopology<MeshType>::FaceFace(m_);
     vcg::tri::UpdateTopology<MeshType>::VertexFace(m_);
     Histogram(rep.histogramAfter, rep.irregularAfter);
+    rep.globalRelaxUndone = !globalKept_;
     rep.seconds = Elapsed();
     rep.result = Result::Ok();
     return rep;
@@ -201,9 +208,10 @@ class AutomaticReduction {
       if ((i & 255) == 0 && Done()) return true;
       if (!IsInteriorIrregular(v) || Frozen(v)) continue;
       if (CancelAround(rep, v)) continue;
-      if (travel == 0) continue;
+      if (travel == 0 || UnchangedSinceFailure(v, travel)) continue;
       if (ed_.Valence(v) == 5 && Transport(rep, v, travel)) continue;
-      if (Isolated(v)) SplitAndAbsorb(rep, v, std::max(2, travel));
+      if (Isolated(v) && SplitAndAbsorb(rep, v, std::max(2, travel))) continue;
+      Stamp(failedAt_, v, epoch_);
     }
     return true;
   }
@@ -233,9 +241,7 @@ class AutomaticReduction {
         {v}, [&](const std::map<int, int>& b, const std::map<int, int>& a) { return Reduces(b, a); },
         "cancellation", false);
     if (!o) return false;
-    std::vector<int> touched;
-    for (auto& kv : o.changes)
-      if (kv.second != 0) touched.push_back(kv.first);
+    std::vector<int> touched = Changed(o);
     Relax(touched);
     if (!g.Accept(touched)) {
       ++rep.undone;
@@ -261,71 +267,74 @@ class AutomaticReduction {
   bool Transport(ReductionReport& rep, int v5, int v7, int travel, std::vector<int>* touchedOut = nullptr) {
     std::vector<int> targets = NearestIrregular({v5, v7}, travel, opt_.targetsPerPair);
     for (int t : targets) {
-      Guard g(*this, {v5, v7});
-      int a = v5, b = v7, steps = 0;
-      std::vector<int> touched{a, b};
-      bool cancelled = false;
-      for (int s = 0; s < travel + 2 && !cancelled; ++s) {
-        AtomicOutcome o = StepCloser(a, b, ed_.V(t)->P());
-        if (!o) {
-          // no step gets closer: the pair is next to the target but on the wrong side for a
-          // removal; one more step in any direction may set it up
-          cancelled = StepAndCancel(a, b, touched);
-          steps += cancelled;
-          break;
-        }
-        ++steps;
-        a = o.irregular[0];
-        b = o.irregular[1];
-        for (auto& kv : o.changes)
-          if (kv.second != 0) touched.push_back(kv.first);
-        Relax({a, b});
-          cancelled = RemovalAt({a, b}, touched);
-      }
-      if (cancelled && g.Accept(touched)) {
-        if (touchedOut) touchedOut->insert(touchedOut->end(), touched.begin(), touched.end());
-        ++rep.transports;
-        rep.pairSteps += steps;
+      const CoordType goal = ed_.V(t)->P();
+      if (TryMove(rep, v5, v7, [&](int a, int b) { return StepCloser(a, b, goal); }, travel + 2, rep.transports,
+                  touchedOut))
         return true;
-      }
-      if (cancelled) ++rep.undone;
-      g.Undo();
     }
     // No irregular vertex nearby takes the pair: let it glide straight on (repeating the same
     // pair move parallel-transports it, sec. 6.2) until it meets one that does. This is what
     // empties the walls of 5-7 pairs between differently oriented regular patches.
-    for (int dir : {1, 4, 0, 5, 2, 3}) {
-      Guard g(*this, {v5, v7});
-      int a = v5, b = v7, steps = 0;
-      std::vector<int> touched{a, b};
-      bool cancelled = false;
-      for (int s = 0; s < opt_.glideTravel && !cancelled; ++s) {
-        AtomicOutcome o = ops_.MovePair57(a, b, dir);
-        bool ok = bool(o);
-        for (auto& kv : o.changes) ok = ok && !Frozen(kv.first);
-        if (!ok) {
-          cancelled = StepAndCancel(a, b, touched);
-          steps += cancelled;
-          break;
-        }
-        ++steps;
-        a = o.irregular[0];
-        b = o.irregular[1];
-        for (auto& kv : o.changes)
-          if (kv.second != 0) touched.push_back(kv.first);
-        Relax({a, b});
-        cancelled = RemovalAt({a, b}, touched);
-      }
-      if (cancelled && g.Accept(touched)) {
-        if (touchedOut) touchedOut->insert(touchedOut->end(), touched.begin(), touched.end());
-        ++rep.glides;
-        rep.pairSteps += steps;
+    for (int dir : {1, 4, 0, 5, 2, 3})
+      if (TryMove(rep, v5, v7, [&](int a, int b) { return ops_.MovePair57(a, b, dir); }, opt_.glideTravel,
+                  rep.glides, touchedOut))
         return true;
-      }
-      if (cancelled) ++rep.undone;
-      g.Undo();
-    }
     return false;
+  }
+
+  typedef std::function<AtomicOutcome(int, int)> PairStep;
+
+  /// Moves the pair with `step` until a removal applies next to it, and keeps the result if
+  /// it is good enough (Guard). A failed transport is the common case and the expensive one (a
+  /// relaxation per step), so a topology-only probe (no relaxation, no fold check, undone)
+  /// first finds whether and after how many steps a removal happens.
+  bool TryMove(ReductionReport& rep, int v5, int v7, const PairStep& step, int maxSteps, int& successes,
+               std::vector<int>* touchedOut) {
+    int reach = -1;
+    {
+      auto cp = ed_.Mark();
+      const bool folds = ed_.geometry().checkFolds;
+      ed_.geometry().checkFolds = false;
+      std::vector<int> scratch;
+      reach = MoveUntilRemoval(v5, v7, step, maxSteps, false, scratch);
+      ed_.geometry().checkFolds = folds;
+      ed_.RollbackTo(cp);
+    }
+    if (reach < 0) return false;
+    Guard g(*this, {v5, v7});
+    std::vector<int> touched{v5, v7};
+    const int steps = MoveUntilRemoval(v5, v7, step, reach + 2, true, touched);
+    if (steps >= 0 && g.Accept(touched)) {
+      if (touchedOut) touchedOut->insert(touchedOut->end(), touched.begin(), touched.end());
+      ++successes;
+      rep.pairSteps += steps;
+      return true;
+    }
+    if (steps >= 0) ++rep.undone;
+    g.Undo();
+    return false;
+  }
+
+  /// Steps the pair (a, b) with `step` until a removal (sec. 6.2) applies next to it; when no
+  /// step is possible, one more step in any direction may set the removal up. Returns the
+  /// number of pair steps taken, or -1 if no removal happened (the caller undoes).
+  int MoveUntilRemoval(int a, int b, const PairStep& step, int maxSteps, bool relax, std::vector<int>& touched) {
+    for (int s = 0; s < maxSteps; ++s) {
+      auto cp = ed_.Mark();
+      AtomicOutcome o = step(a, b);
+      bool ok = bool(o);
+      for (auto& kv : o.changes) ok = ok && !Frozen(kv.first);
+      if (!ok) {
+        ed_.RollbackTo(cp);
+        return StepAndCancel(a, b, touched, relax) ? s + 1 : -1;
+      }
+      a = o.irregular[0];
+      b = o.irregular[1];
+      Record(o, touched);
+      if (relax) Relax({a, b});
+      if (RemovalAt({a, b}, touched, relax)) return s + 1;
+    }
+    return -1;
   }
 
   bool Isolated(int v) {
@@ -361,12 +370,8 @@ class AutomaticReduction {
         auto cp = ed_.Mark();
         const size_t mark = touched.size();
         AtomicOutcome gen = ops_.MoveWithPairGeneration(cur, k);
-        dbg_[0]++;
         if (!gen) continue;
-        dbg_[1]++;
-        for (auto& kv : gen.changes)
-          if (kv.second != 0) touched.push_back(kv.first);
-        Relax(touched);
+        Relax(Record(gen, touched));
         const int moved = gen.irregular[0];
         int p5 = gen.irregular[1], p7 = gen.irregular[2];
         if (ed_.Valence(p5) != 5) std::swap(p5, p7);
@@ -376,7 +381,6 @@ class AutomaticReduction {
         exclude_.clear();
         if (away) {
           next = moved;
-          dbg_[2]++;
         } else {
           touched.resize(mark);
           ed_.RollbackTo(cp);
@@ -388,7 +392,6 @@ class AutomaticReduction {
     if (ed_.IsLive(cur) && ed_.IsLive(w) && ed_.Adjacent(cur, w) && ed_.Valence(cur) + ed_.Valence(w) == 12) {
       const int a5 = ed_.Valence(cur) == 5 ? cur : w, a7 = a5 == cur ? w : cur;
       if (Transport(rep, a5, a7, opt_.maxTravel, &touched) && g.Accept(touched)) {
-        dbg_[3]++;
         ++rep.splitAbsorptions;
         return true;
       }
@@ -414,25 +417,56 @@ class AutomaticReduction {
     return dist;
   }
 
+  static void Stamp(std::vector<long>& at, int v, long when) {
+    if (v < 0) return;
+    if (size_t(v) >= at.size()) at.resize(size_t(v) + 1, -1);
+    at[size_t(v)] = when;
+  }
+  static long StampOf(const std::vector<long>& at, int v) { return size_t(v) < at.size() ? at[size_t(v)] : -1; }
+
+  /// True if a transport from v already failed and nothing within `radius` edges has been
+  /// edited since: trying again would fail the same way (the search is deterministic).
+  bool UnchangedSinceFailure(int v, int radius) {
+    const long failed = StampOf(failedAt_, v);
+    if (failed < 0) return false;
+    for (int x : KRing(m_, {v}, radius))
+      if (StampOf(editedAt_, x) > failed) return false;
+    return true;
+  }
+
+  /// The vertices an atomic operation changed and that still exist.
+  static std::vector<int> Changed(const AtomicOutcome& o) {
+    std::vector<int> c;
+    for (auto& kv : o.changes)
+      if (kv.second != 0) c.push_back(kv.first);
+    return c;
+  }
+
+  /// Appends what o changed to touched; returns it too.
+  static std::vector<int> Record(const AtomicOutcome& o, std::vector<int>& touched) {
+    std::vector<int> c = Changed(o);
+    touched.insert(touched.end(), c.begin(), c.end());
+    return c;
+  }
+
   /// Applies a removal (sec. 6.2) involving one of the vertices, if one exists; adds what it
   /// changed to touched and relaxes there.
-  bool RemovalAt(const std::vector<int>& vs, std::vector<int>& touched) {
+  bool RemovalAt(const std::vector<int>& vs, std::vector<int>& touched, bool relax = true) {
     for (int x : vs) {
       if (!ed_.IsLive(x)) continue;
       AtomicOutcome c = ops_.FindAndApply(
           {x}, [&](const std::map<int, int>& bf, const std::map<int, int>& af) { return Reduces(bf, af); },
           "cancellation", false);
       if (!c) continue;
-      for (auto& kv : c.changes)
-        if (kv.second != 0) touched.push_back(kv.first);
-      Relax(touched);
+      std::vector<int> changed = Record(c, touched);
+      if (relax) Relax(changed);
       return true;
     }
     return false;
   }
 
   /// One pair step, in the first of the six directions after which a removal applies.
-  bool StepAndCancel(int v5, int v7, std::vector<int>& touched) {
+  bool StepAndCancel(int v5, int v7, std::vector<int>& touched, bool relax = true) {
     for (int dir = 0; dir < 6; ++dir) {
       auto cp = ed_.Mark();
       const size_t mark = touched.size();
@@ -441,9 +475,8 @@ class AutomaticReduction {
       if (ok)
         for (auto& kv : o.changes) ok = ok && !Frozen(kv.first);
       if (ok) {
-        for (auto& kv : o.changes)
-          if (kv.second != 0) touched.push_back(kv.first);
-        if (RemovalAt({o.irregular[0], o.irregular[1]}, touched)) return true;
+        Record(o, touched);
+        if (RemovalAt({o.irregular[0], o.irregular[1]}, touched, relax)) return true;
       }
       touched.resize(mark);
       ed_.RollbackTo(cp);
@@ -576,11 +609,17 @@ class AutomaticReduction {
         Undo();
         return false;
       }
+      ++r.epoch_;
+      for (int t : touched) Stamp(r.editedAt_, t, r.epoch_);
       return true;
     }
     void Undo() { r.ed_.RollbackTo(cp); }
   };
 
+  /// The final relaxation of everything not frozen: global (eq. 5) if asked, kept only if it
+  /// does not lower the smallest angle (the global solve equalizes lengths and angles on
+  /// average and can squeeze a few triangles next to the remaining irregular vertices), then
+  /// local sweeps, which never lower the smallest angle around a vertex.
   void FinalRelax() {
     std::vector<int> all;
     for (size_t i = 0; i < m_.vert.size(); ++i)
@@ -588,10 +627,24 @@ class AutomaticReduction {
     for (int v : all) ed_.journal().SaveVertex(ed_.V(v));
     for (auto& f : m_.face)
       if (!f.IsD()) ed_.journal().SaveFace(&f);
-    RelaxOptions ro;
-    ro.mode = RelaxMode::Global;
-    ro.iterations = opt_.globalRelaxRounds;
-    irregular::Relax(m_, all, &original_, ro);
+    if (opt_.finalRelax == RelaxMode::Global) {
+      const double before = MeasureShape(m_).minAngleDeg;
+      std::vector<CoordType> saved;
+      for (int v : all) saved.push_back(ed_.V(v)->P());
+      RelaxOptions go;
+      go.mode = RelaxMode::Global;
+      go.iterations = opt_.globalRelaxRounds;
+      irregular::Relax(m_, all, &original_, go);
+      if (MeasureShape(m_).minAngleDeg < before) {
+        for (size_t i = 0; i < all.size(); ++i) ed_.V(all[i])->P() = saved[i];
+        globalKept_ = false;
+      }
+    }
+    RelaxOptions lo;
+    lo.iterations = opt_.finalLocalSweeps;
+    LocalRelax(m_, all, &original_, lo);
+    for (auto& f : m_.face)
+      if (!f.IsD()) f.N() = vcg::TriangleNormal(f).Normalize();
   }
 
   MeshType& m_;
@@ -601,10 +654,10 @@ class AutomaticReduction {
   CompositeOperations<MeshType> comp_;
   AtomicOperations<MeshType>& ops_;
   double budget_ = 0;
+  bool globalKept_ = true;
+  long epoch_ = 0;                       ///< accepted edits so far
+  std::vector<long> editedAt_, failedAt_;  ///< per vertex: epoch of its last accepted edit / failed attempt
   std::vector<int> exclude_;  ///< Reduces(): irregular vertices a removal must not involve
- public:
-  long dbg_[8] = {0, 0, 0, 0, 0, 0, 0, 0};
- private:
   int maxSurvivors_ = 1 << 20;  ///< Reduces(): most irregular vertices a removal may leave
   std::chrono::steady_clock::time_point t0_;
 };
