@@ -186,6 +186,11 @@ RelaxReport LocalRelax(MeshType& m, const std::vector<int>& region, const Surfac
       CoordType d = c - vp->P();
       d -= n * (d.dot(n));  // tangential part only (the surface is kept by projection)
       CoordType p = vp->P() + d * ScalarType(opt.step);
+      // a degenerate star (zero-area faces) has no normal: leave the vertex where it is
+      if (!std::isfinite(double(p[0])) || !std::isfinite(double(p[1])) || !std::isfinite(double(p[2]))) {
+        ++rep.rejected;
+        continue;
+      }
       if (opt.reproject && original) p = CoordType::Construct(original->Closest(vcg::Point3f::Construct(p)));
       if (relax_detail::MoveHurts<MeshType>(st, vp, p, opt.minFaceTurnCos)) {
         ++rep.rejected;

@@ -55,7 +55,12 @@ class SurfaceProjector {
     }
     vcg::tri::UpdateBounding<PMesh>::Box(copy_);
     vcg::tri::UpdateNormal<PMesh>::PerFaceNormalized(copy_);
-    grid_.Set(copy_.face.begin(), copy_.face.end());
+    // vcg's grid inflates its box by one cell only; a point within a rounding error of that
+    // box's max corner then maps to a cell past the end (GridClosest asserts). Points we query
+    // are near the surface, so a margin of a few percent of the diagonal keeps them inside.
+    vcg::Box3<float> box = copy_.bbox;
+    box.Offset(0.05f * copy_.bbox.Diag() + 1e-6f);
+    grid_.Set(copy_.face.begin(), copy_.face.end(), box);
     diag_ = copy_.bbox.Diag();
   }
 
