@@ -2,6 +2,11 @@
 // constructed meshes; refusals leave the mesh identical.
 #include <gtest/gtest.h>
 
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
 #include <vcg_ext/irregular/composite_ops.h>
 #include <vcg_ext/irregular/mesh_checks.h>
 
@@ -18,6 +23,45 @@ std::multiset<int> IrregularValences(TMesh& m) {
   for (size_t i = 0; i < m.vert.size(); ++i)
     if (!m.vert[i].IsD() && vf.IsIrregular(i)) r.insert(vf.valence[i]);
   return r;
+}
+/// Vertex adjacency from the face list alone, independent of the stars and FF/VF adjacency
+/// the code under test maintains.
+std::vector<std::set<int>> FaceAdjacency(TMesh& m) {
+  std::vector<std::set<int>> adj(m.vert.size());
+  for (auto& f : m.face)
+    if (!f.IsD())
+      for (int z = 0; z < 3; ++z) {
+        const int a = int(vcg::tri::Index(m, f.V(z))), b = int(vcg::tri::Index(m, f.V((z + 1) % 3)));
+        adj[size_t(a)].insert(b);
+        adj[size_t(b)].insert(a);
+      }
+  return adj;
+}
+/// vertex -> valence of the irregular vertices (closed meshes), from the face list.
+std::map<int, int> FaceValenceIrregular(TMesh& m) {
+  std::map<int, int> r;
+  std::vector<std::set<int>> adj = FaceAdjacency(m);
+  for (size_t i = 0; i < adj.size(); ++i)
+    if (!m.vert[i].IsD() && !adj[i].empty() && adj[i].size() != 6) r[int(i)] = int(adj[i].size());
+  return r;
+}
+/// Graph distance (BFS over the face edges) between two vertex sets; -1 if not connected.
+int GraphDistance(TMesh& m, const std::vector<int>& from, const std::vector<int>& to) {
+  std::vector<std::set<int>> adj = FaceAdjacency(m);
+  std::vector<int> d(adj.size(), -1), queue;
+  for (int v : from) d[size_t(v)] = 0, queue.push_back(v);
+  for (size_t q = 0; q < queue.size(); ++q)
+    for (int w : adj[size_t(queue[q])])
+      if (d[size_t(w)] < 0) d[size_t(w)] = d[size_t(queue[q])] + 1, queue.push_back(w);
+  int best = -1;
+  for (int v : to)
+    if (d[size_t(v)] >= 0 && (best < 0 || d[size_t(v)] < best)) best = d[size_t(v)];
+  return best;
+}
+int Count(const std::string& text, const std::string& what) {
+  int n = 0;
+  for (size_t p = text.find(what); p != std::string::npos; p = text.find(what, p + 1)) ++n;
+  return n;
 }
 int FirstWithValence(TMesh& m, int d) {
   auto vf = ComputeValences(m);
@@ -180,4 +224,43 @@ TEST(Composite, RefusalsLeaveMeshUnchanged) {
   int r = FirstWithValence(m, 6);
   EXPECT_FALSE(co.MovePair(p, r, 0, 3));
   EXPECT_EQ(test::Snapshot(m), snap);
+}
+
+TEST(Composite, QuadrupleCancellationFollowsTheSeparatrixPathAroundATurn) {
+  // One pair of a generated quadruple is moved 6 steps in direction d1, then 6 in d2 (an
+  // L-shaped offset for most combinations); cancelling the quadruple then transports it back
+  // along the connecting path of two separatrix segments (sec. 7.1.1).
+  TMesh m;
+  test::RegularTorus(m, 48, 48);
+  SurfaceProjector original(m);
+  MeshEditor<TMesh> ed(m);
+  CompositeOptions opt;
+  opt.relax = false;
+  CompositeOperations<TMesh> co(ed, &original, opt);
+  AtomicOutcome g = co.atomic().GenerateQuadruple(24 * 48 + 24, 0, false);
+  ASSERT_TRUE(g);
+  const int a5 = g.irregular[0], a7 = g.irregular[2], b5 = g.irregular[1], b7 = g.irregular[3];
+  int cases = 0, turns = 0;
+  for (int d1 = 0; d1 < 6; ++d1)
+    for (int d2 = 0; d2 < 6; ++d2) {
+      auto cp = ed.Mark();
+      CompositeOutcome o1 = co.MoveAdjacentPair57(a5, a7, d1, 6);
+      CompositeOutcome o2 = o1 ? co.MoveAdjacentPair57(o1.irregular[0], o1.irregular[1], d2, 6) : o1;
+      if (o2) {
+        ++cases;
+        const int dist = GraphDistance(m, o2.irregular, {b5, b7});
+        CompositeOutcome c = co.CancelQuadruple({o2.irregular[0], o2.irregular[1], b5, b7});
+        ASSERT_TRUE(c) << d1 << " " << d2 << ": " << c.result.reason << "\n" << c.log;
+        EXPECT_TRUE(FaceValenceIrregular(m).empty());
+        ASSERT_TRUE(CheckInvariants(m).ok) << CheckInvariants(m).reason;
+        // one atomic step per edge of the way, plus at most two alignment steps beside the
+        // partner pair where the path ends (taken greedily), plus the removal
+        EXPECT_LE(c.atomicSteps, dist + 3) << c.log;
+        EXPECT_LE(Count(c.log, "greedy"), 2) << c.log;
+        turns += Count(c.log, "turn point") > 0;
+      }
+      ed.RollbackTo(cp);
+    }
+  EXPECT_GE(cases, 20);
+  EXPECT_GE(turns, 10);
 }

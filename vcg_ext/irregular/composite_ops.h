@@ -6,7 +6,8 @@
 //  * Pair movement (sec. 7.1): an adjacent 5-7 pair moves n steps along a straight line;
 //    a non-adjacent 5-7, 5-5 or 7-7 pair moves by the three-step pipeline of sec. 7.1.1:
 //    (1) one vertex moves one step and generates a 5-7 pair, (2) the generated pair is
-//    transported to the partner, (3) it cancels there, moving the partner one step.
+//    transported to the partner along the connecting path of two separatrix segments and
+//    their turn point (separatrix.h), (3) it cancels there, moving the partner one step.
 //  * Triple cancellation (sec. 7.2): a 5-7 pair of the triple is transported to the third
 //    vertex until the atomic removal applies; quadruple cancellation (sec. 7.3) likewise.
 //  * Generation (sec. 7.3): the inverse of cancellation; the new vertices are placed n steps
@@ -22,10 +23,12 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "atomic_ops.h"
 #include "relaxation.h"
+#include "separatrix.h"
 
 namespace vcg_ext {
 namespace irregular {
@@ -344,25 +347,21 @@ class CompositeOperations {
     if (ed_.Adjacent(a5, v7[0]) && ed_.Adjacent(b5, v7[1])) a7 = v7[0], b7 = v7[1];
     else if (ed_.Adjacent(a5, v7[1]) && ed_.Adjacent(b5, v7[0])) a7 = v7[1], b7 = v7[0];
     if (a7 < 0) return Fail(out, cp, "the quadruple must consist of two adjacent 5-7 pairs; move them into pairs first");
-    // transport pair (a5, a7) toward (b5, b7) until the removal applies
-    const CoordType target = Mid(b5, b7);
-    for (int s = 0; s < opt_.maxTransportSteps; ++s) {
+    // transport pair (a5, a7) to (b5, b7) until the removal applies
+    Result t = Transport(out, a5, a7, {b5, b7}, [&]() {
       AtomicOutcome r = ops_.RemoveQuadruple({a5, a7, b5, b7});
-      if (r) {
-        ++out.atomicSteps;
-        Step(out, r.description, {a5, b5});
-        out.result = Result::Ok();
-        return out;
-      }
-      AtomicOutcome o = StepToward(a5, a7, target, {b5, b7});
-      if (!o) break;
+      if (!r) return false;
       ++out.atomicSteps;
-      a5 = o.irregular[0];
-      a7 = o.irregular[1];
-      Step(out, o.description, {a5, a7});
+      Step(out, r.description, {a5, b5});
+      return true;
+    });
+    if (t) {
+      out.result = Result::Ok();
+      return out;
     }
-    return Fail(out, cp, "the two 5-7 pairs met but do not annihilate: they are not in the configuration of fig. 11 "
-                         "(sec. 7.3: a 5-7 pair and its mirror image cancel; two pairs with the same orientation do not)");
+    return Fail(out, cp, "the two 5-7 pairs met but do not annihilate (" + t.reason +
+                             "): they are not in the configuration of fig. 11 (sec. 7.3: a 5-7 pair and its mirror "
+                             "image cancel; two pairs with the same orientation do not)");
   }
 
   // ------------------------------------------------------------ generation (sec. 7.3)
@@ -491,25 +490,104 @@ class CompositeOperations {
     return ops_.MovePair57(v5, v7, best);
   }
 
-  /// Transports the 5-7 pair (p5, p7) toward `target` and cancels the triple it forms there
+  /// Transports the 5-7 pair (p5, p7) to `target` and cancels the triple it forms there
   /// (sec. 7.1.1 steps 2-3, sec. 7.2). *survivor: the vertex that remains.
   Result TransportAndCancel(CompositeOutcome& out, int p5, int p7, int target, int* survivor) {
-    for (int s = 0; s <= opt_.maxTransportSteps; ++s) {
+    Result t = Transport(out, p5, p7, {target}, [&]() {
       AtomicOutcome r = ops_.MoveWithPairRemoval({p5, p7, target});
-      if (r) {
-        ++out.atomicSteps;
-        Step(out, r.description, r.irregular);
-        *survivor = r.irregular.empty() ? target : r.irregular[0];
-        return Result::Ok();
+      if (!r) return false;
+      ++out.atomicSteps;
+      Step(out, r.description, r.irregular);
+      *survivor = r.irregular.empty() ? target : r.irregular[0];
+      return true;
+    });
+    if (!t) return Result::Fail(Str("transporting the 5-7 pair to vertex ", target, ": ", t.reason));
+    return t;
+  }
+
+  /// Sec. 7.1.1 step 2: moves the 5-7 pair (p5, p7) to the vertices `targets` by atomic pair
+  /// moves along the connecting path (two separatrix segments and their turn point, see
+  /// separatrix.h) from the nearer pair vertex to the nearer target. Before every step
+  /// `arrived()` is asked to finish (it applies the cancellation and returns true when it
+  /// can). Where no move advances along the path (an irregular vertex or a fold in the way),
+  /// one greedy step brings the pair closer in space and the path is traced again from there.
+  /// O(steps) atomic moves, plus O(path length) per path traced.
+  Result Transport(CompositeOutcome& out, int& p5, int& p7, const std::vector<int>& targets,
+                   const std::function<bool()>& arrived) {
+    std::unordered_map<int, int> along;  // path vertex -> position on the path
+    int progress = 0;
+    for (int s = 0; s <= opt_.maxTransportSteps; ++s) {
+      if (arrived()) return Result::Ok();
+      if (s == opt_.maxTransportSteps) break;
+      if (along.empty()) progress = TracePath(out, p5, p7, targets, &along);
+      AtomicOutcome o = along.empty() ? AtomicOutcome() : StepAlong(p5, p7, along, &progress, targets);
+      if (!o) {
+        // blocked: one greedy step toward the targets' centroid, then trace the path again
+        CoordType c(0, 0, 0);
+        for (int t : targets) c += ed_.V(t)->P();
+        o = StepToward(p5, p7, c / float(targets.size()), targets);
+        if (!o) return o.result;
+        out.log += "  (path blocked: greedy step)\n";
+        along.clear();
       }
-      AtomicOutcome o = StepToward(p5, p7, ed_.V(target)->P(), {target});
-      if (!o) return Result::Fail(Str("transporting the 5-7 pair to vertex ", target, ": ", o.result.reason));
       ++out.atomicSteps;
       p5 = o.irregular[0];
       p7 = o.irregular[1];
       Step(out, o.description, {p5, p7});
     }
-    return Result::Fail(Str("the 5-7 pair did not reach vertex ", target, " within ", opt_.maxTransportSteps, " steps"));
+    return Result::Fail(Str("the 5-7 pair did not get there within ", opt_.maxTransportSteps, " steps"));
+  }
+
+  /// The shortest connecting path from p5 or p7 to one of `targets`, as vertex -> position;
+  /// empty when there is none. Returns the pair's position on it (0: its first vertex).
+  int TracePath(CompositeOutcome& out, int p5, int p7, const std::vector<int>& targets,
+                std::unordered_map<int, int>* along) {
+    SeparatrixTracer<MeshType> tracer(ed_.Mesh());
+    ConnectingPath best;
+    for (int from : {p5, p7})
+      for (int t : targets) {
+        ConnectingPath p = tracer.Connect(from, t, opt_.maxTransportSteps);
+        if (p && (!best || p.Length() < best.Length())) best = p;
+      }
+    along->clear();
+    if (!best) return 0;
+    std::vector<int> v = best.Vertices();
+    for (size_t i = 0; i < v.size(); ++i) along->emplace(v[i], int(i));
+    out.log += Str("  separatrix path from ", v.front(), " to ", v.back(), ": ", best.L1(), " + ", best.L2(),
+                   " edges", best.turn >= 0 ? Str(", turn point ", best.turn) : std::string(), "\n");
+    return 0;
+  }
+
+  /// The atomic move of the 5-7 pair that puts one of its vertices furthest along the path,
+  /// past *progress (ties: the other vertex further along, then the lower direction); never
+  /// removes a vertex of `keep`. Fails when no move advances.
+  AtomicOutcome StepAlong(int p5, int p7, const std::unordered_map<int, int>& along, int* progress,
+                          const std::vector<int>& keep) {
+    auto at = [&](int v) {
+      auto it = along.find(v);
+      return it == along.end() || !ed_.IsLive(v) ? -1 : it->second;
+    };
+    int best = -1, bestFar = *progress, bestNear = -2;
+    for (int dir = 0; dir < 6; ++dir) {
+      auto cp = ed_.Mark();
+      AtomicOutcome o = ops_.MovePair57(p5, p7, dir);
+      if (o) {
+        bool ok = true;
+        for (int k : keep) ok = ok && ed_.IsLive(k);
+        const int a = at(o.irregular[0]), b = at(o.irregular[1]);
+        const int far = std::max(a, b), near = std::min(a, b);
+        if (ok && (far > bestFar || (far == bestFar && best >= 0 && near > bestNear)))
+          best = dir, bestFar = far, bestNear = near;
+      }
+      ed_.RollbackTo(cp);
+    }
+    if (best < 0) {
+      AtomicOutcome none;
+      none.result = Result::Fail("no pair move advances along the separatrix path");
+      return none;
+    }
+    *progress = bestFar;
+    return ops_.MovePair57(p5, p7, best);
   }
 
   bool MoveApart(CompositeOutcome& out, int& p5, int& p7, int anchor, int spacing) {
