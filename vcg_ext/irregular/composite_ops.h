@@ -441,27 +441,38 @@ class CompositeOperations {
 
   CoordType Mid(int a, int b) { return (ed_.V(a)->P() + ed_.V(b)->P()) / 2; }
 
-  /// The atomic pair move whose displacement best continues `heading`.
-  AtomicOutcome BestStep(int v5, int v7, const CoordType& heading) {
-    const CoordType from = Mid(v5, v7);
+  /// Tries the six atomic moves of the 5-7 pair (each rolled back) and applies the one with
+  /// the highest score(outcome) above `floor` (ties: the lower direction); fails with
+  /// `whyNone` when no move scores above it. 7 atomic moves.
+  AtomicOutcome BestMove(int v5, int v7, const std::function<double(const AtomicOutcome&)>& score, double floor,
+                         const std::string& whyNone) {
     int best = -1;
-    double bestScore = -std::numeric_limits<double>::max();
+    double bestScore = floor;
     for (int dir = 0; dir < 6; ++dir) {
       auto cp = ed_.Mark();
       AtomicOutcome o = ops_.MovePair57(v5, v7, dir);
       if (o) {
-        CoordType d = Mid(o.irregular[0], o.irregular[1]) - from;
-        double score = double(d.dot(heading)) / (double(d.Norm()) * double(heading.Norm()) + 1e-30);
-        if (score > bestScore) bestScore = score, best = dir;
+        const double sc = score(o);
+        if (sc > bestScore) bestScore = sc, best = dir;
       }
       ed_.RollbackTo(cp);
     }
     if (best < 0) {
       AtomicOutcome none;
-      none.result = Result::Fail("the pair is blocked in every direction (irregular vertices or folds around it)");
+      none.result = Result::Fail(whyNone);
       return none;
     }
     return ops_.MovePair57(v5, v7, best);
+  }
+
+  /// The atomic pair move whose displacement best continues `heading`.
+  AtomicOutcome BestStep(int v5, int v7, const CoordType& heading) {
+    const CoordType from = Mid(v5, v7);
+    return BestMove(v5, v7, [&](const AtomicOutcome& o) {
+      CoordType d = Mid(o.irregular[0], o.irregular[1]) - from;
+      return double(d.dot(heading)) / (double(d.Norm()) * double(heading.Norm()) + 1e-30);
+    }, -std::numeric_limits<double>::max(),
+       "the pair is blocked in every direction (irregular vertices or folds around it)");
   }
 
   /// The atomic pair move that brings the pair's midpoint closest to target; never onto the
@@ -469,25 +480,12 @@ class CompositeOperations {
   // `target` by value: callers pass a vertex position, and a vertex split reallocates the
   // vertex vector under it.
   AtomicOutcome StepToward(int v5, int v7, CoordType target, const std::vector<int>& avoid = {}) {
-    int best = -1;
-    double bestDist = double((Mid(v5, v7) - target).Norm());
-    for (int dir = 0; dir < 6; ++dir) {
-      auto cp = ed_.Mark();
-      AtomicOutcome o = ops_.MovePair57(v5, v7, dir);
-      if (o) {
-        bool clash = false;
-        for (int a : avoid) clash = clash || !ed_.IsLive(a);
-        double dist = double((Mid(o.irregular[0], o.irregular[1]) - target).Norm());
-        if (!clash && dist < bestDist) bestDist = dist, best = dir;
-      }
-      ed_.RollbackTo(cp);
-    }
-    if (best < 0) {
-      AtomicOutcome none;
-      none.result = Result::Fail("the 5-7 pair cannot get closer (blocked by irregular vertices, folds, or already as close as it can)");
-      return none;
-    }
-    return ops_.MovePair57(v5, v7, best);
+    return BestMove(v5, v7, [&](const AtomicOutcome& o) {
+      for (int a : avoid)
+        if (!ed_.IsLive(a)) return -std::numeric_limits<double>::max();
+      return -double((Mid(o.irregular[0], o.irregular[1]) - target).Norm());
+    }, -double((Mid(v5, v7) - target).Norm()),
+       "the 5-7 pair cannot get closer (blocked by irregular vertices, folds, or already as close as it can)");
   }
 
   /// Transports the 5-7 pair (p5, p7) to `target` and cancels the triple it forms there
@@ -567,27 +565,16 @@ class CompositeOperations {
       auto it = along.find(v);
       return it == along.end() || !ed_.IsLive(v) ? -1 : it->second;
     };
-    int best = -1, bestFar = *progress, bestNear = -2;
-    for (int dir = 0; dir < 6; ++dir) {
-      auto cp = ed_.Mark();
-      AtomicOutcome o = ops_.MovePair57(p5, p7, dir);
-      if (o) {
-        bool ok = true;
-        for (int k : keep) ok = ok && ed_.IsLive(k);
-        const int a = at(o.irregular[0]), b = at(o.irregular[1]);
-        const int far = std::max(a, b), near = std::min(a, b);
-        if (ok && (far > bestFar || (far == bestFar && best >= 0 && near > bestNear)))
-          best = dir, bestFar = far, bestNear = near;
-      }
-      ed_.RollbackTo(cp);
-    }
-    if (best < 0) {
-      AtomicOutcome none;
-      none.result = Result::Fail("no pair move advances along the separatrix path");
-      return none;
-    }
-    *progress = bestFar;
-    return ops_.MovePair57(p5, p7, best);
+    // score in [far, far + 1): the furthest vertex first, the other one as a tie-break
+    const double span = double(along.size()) + 2;
+    AtomicOutcome o = BestMove(p5, p7, [&](const AtomicOutcome& c) {
+      for (int k : keep)
+        if (!ed_.IsLive(k)) return -std::numeric_limits<double>::max();
+      const int a = at(c.irregular[0]), b = at(c.irregular[1]);
+      return double(std::max(a, b)) + double(std::min(a, b) + 1) / span;
+    }, double(*progress) + 0.5, "no pair move advances along the separatrix path");
+    if (o) *progress = std::max(at(o.irregular[0]), at(o.irregular[1]));
+    return o;
   }
 
   bool MoveApart(CompositeOutcome& out, int& p5, int& p7, int anchor, int spacing) {
@@ -595,24 +582,15 @@ class CompositeOperations {
   }
   bool MoveApart(CompositeOutcome& out, int& p5, int& p7, CoordType anchor, int spacing, const std::vector<int>& keep) {
     for (int s = 0; s < spacing; ++s) {
-      int best = -1;
-      double bestDist = -1;
-      for (int dir = 0; dir < 6; ++dir) {
-        auto cp = ed_.Mark();
-        AtomicOutcome o = ops_.MovePair57(p5, p7, dir);
-        bool ok = bool(o);
-        for (int k : keep) ok = ok && ed_.IsLive(k) && (ed_.Valence(k) == 5 || ed_.Valence(k) == 7);
-        if (ok) {
-          double dist = double((Mid(o.irregular[0], o.irregular[1]) - anchor).Norm());
-          if (dist > bestDist) bestDist = dist, best = dir;
-        }
-        ed_.RollbackTo(cp);
-      }
-      if (best < 0) {
+      AtomicOutcome o = BestMove(p5, p7, [&](const AtomicOutcome& c) {
+        for (int k : keep)
+          if (!ed_.IsLive(k) || (ed_.Valence(k) != 5 && ed_.Valence(k) != 7)) return -1.0;
+        return double((Mid(c.irregular[0], c.irregular[1]) - anchor).Norm());
+      }, -0.5, "");
+      if (!o) {
         out.result = Result::Fail(Str("the generated pair cannot move further apart after ", s, " of ", spacing, " steps"));
         return false;
       }
-      AtomicOutcome o = ops_.MovePair57(p5, p7, best);
       ++out.atomicSteps;
       p5 = o.irregular[0];
       p7 = o.irregular[1];
