@@ -25,7 +25,7 @@ namespace irr = vcg_ext::irregular;
 
 FilterIrregularPlugin::FilterIrregularPlugin() {
   typeList << FP_ANALYZE << FP_ATOMIC << FP_RELAX << FP_REDUCE << FP_AGGREGATE << FP_MOVE_PAIR << FP_CANCEL_TRIPLE
-           << FP_CANCEL_QUADRUPLE << FP_GENERATE;
+           << FP_CANCEL_QUADRUPLE << FP_GENERATE << FP_AUTO_REDUCE;
   for (FilterIDType t : types()) actionList << new QAction(filterName(t), this);
 }
 
@@ -42,6 +42,7 @@ QString FilterIrregularPlugin::filterName(FilterIDType id) const {
     case FP_CANCEL_TRIPLE: return "Irregular Vertices: Cancel Triple";
     case FP_CANCEL_QUADRUPLE: return "Irregular Vertices: Cancel Quadruple";
     case FP_GENERATE: return "Irregular Vertices: Generate";
+    case FP_AUTO_REDUCE: return "Irregular Vertices: Automatic Reduction";
   }
   return "";
 }
@@ -113,6 +114,15 @@ QString FilterIrregularPlugin::filterInfo(FilterIDType id) const {
       return "Generation (sec. 7.3), the inverse of cancellation: the selected v5 (v7) becomes a 5-5-7 (5-7-7) "
              "triple, or the selected regular vertex a 5-5-7-7 quadruple; the generated 5-7 pair is then "
              "moved 'spacing' steps away.";
+    case FP_AUTO_REDUCE:
+      return "Removes as many irregular vertices as the quality limits allow, with the paper's operations only "
+             "(what its designers did by hand): type splitting into v5/v7 (sec. 6.3), triple and quadruple "
+             "removals where they apply (sec. 6.2), 5-7 pairs moved to the nearest irregular vertex or gliding "
+             "straight on until they cancel (sec. 7.1-7.2), and stretched 5-7 pairs split into two adjacent "
+             "pairs that are cancelled in turn. Every edit is relaxed locally and undone if it leaves a triangle "
+             "under the minimum angle or the input surface by more than the Hausdorff budget; the whole mesh is "
+             "relaxed at the end. Optionally remeshes isotropically first. Deterministic. Logs counts by "
+             "valence, triangle quality, Hausdorff distance and time.";
   }
   return "";
 }
@@ -141,7 +151,7 @@ int FilterIrregularPlugin::postCondition(QAction* a) const {
   }
 }
 
-void FilterIrregularPlugin::initParameterSet(QAction* a, MeshModel&, RichParameterList& par) {
+void FilterIrregularPlugin::initParameterSet(QAction* a, MeshModel& m, RichParameterList& par) {
   switch (ID(a)) {
     case FP_ANALYZE:
       par.addParam(RichEnum("select", 1, QStringList() << "None" << "All irregular" << "Only valence",
@@ -200,6 +210,7 @@ void FilterIrregularPlugin::initParameterSet(QAction* a, MeshModel&, RichParamet
       par.addParam(RichPoint3f("point", Point3m(0, 0, 0), "Point",
                                "Where the pair should go: in the dialog, use Get / Surf. Pos. and double-click the mesh."));
       break;
+    case FP_AUTO_REDUCE: initAutomaticReductionParameters(m, par); break;
     case FP_GENERATE:
       par.addParam(RichEnum("kind", 0, QStringList() << "Triple from a v5 or v7" << "Quadruple from a regular vertex",
                             "Generate", "What the selected vertex becomes."));
@@ -571,6 +582,7 @@ bool FilterIrregularPlugin::applyFilter(QAction* a, MeshDocument& md, const Rich
     case FP_ANALYZE: return analyze(*mm, par);
     case FP_ATOMIC: return atomic(*mm, par);
     case FP_RELAX: return relax(*mm, par, cb);
+    case FP_AUTO_REDUCE: return automaticReduction(*mm, par, cb);
     default: return composite(a, *mm, par, cb);
   }
   return refuse("Unknown filter.");

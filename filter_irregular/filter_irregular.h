@@ -11,7 +11,8 @@ class FilterIrregularPlugin : public QObject, public MeshFilterInterface {
   Q_INTERFACES(MeshFilterInterface)
 
  public:
-  enum { FP_ANALYZE, FP_ATOMIC, FP_RELAX, FP_REDUCE, FP_AGGREGATE, FP_MOVE_PAIR, FP_CANCEL_TRIPLE, FP_CANCEL_QUADRUPLE, FP_GENERATE };
+  enum { FP_ANALYZE, FP_ATOMIC, FP_RELAX, FP_REDUCE, FP_AGGREGATE, FP_MOVE_PAIR, FP_CANCEL_TRIPLE, FP_CANCEL_QUADRUPLE, FP_GENERATE,
+         FP_AUTO_REDUCE };
 
   FilterIrregularPlugin();
   QString pluginName() const override;
@@ -31,6 +32,9 @@ class FilterIrregularPlugin : public QObject, public MeshFilterInterface {
   bool relax(MeshModel& mm, const RichParameterList& par, vcg::CallBackPos* cb);
   void logShape(const char* when, CMeshO& m);
   bool composite(QAction* a, MeshModel& mm, const RichParameterList& par, vcg::CallBackPos* cb);
+  // filter_automatic_reduction.cpp
+  void initAutomaticReductionParameters(MeshModel& mm, RichParameterList& par);
+  bool automaticReduction(MeshModel& mm, const RichParameterList& par, vcg::CallBackPos* cb);
   /// Refuses: the reason goes to the error message (GUI dialog) and to the log (meshlabserver
   /// prints the log but not the error message). Returns false for `return refuse(...)`.
   bool refuse(const QString& why);

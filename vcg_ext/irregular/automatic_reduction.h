@@ -60,7 +60,8 @@ struct ReductionOptions {
   int globalRelaxRounds = 3;            ///< solve-and-project rounds of the final global relaxation
   int finalLocalSweeps = 5;             ///< local sweeps over the whole mesh at the end (0: none)
   double sharpEdgeDeg = 25;             ///< input edges sharper than this are sampled for the Hausdorff check
-  bool denseHausdorffSamples = false;   ///< also sample the whole input (two points per edge): stricter, ~3x slower
+  double hausdorffSamplesPerEdge = 0;   ///< input samples per edited edge length for the Hausdorff check besides
+                                        ///< its sharp edges (0: sharp edges only); 2 is stricter and ~3x slower
   double timeLimitSeconds = 60;         ///< stop editing (keeping what was done) after this long
   std::function<bool(int, const char*)> progress;  ///< (percent, stage); returning false interrupts and rolls back
 };
@@ -94,18 +95,20 @@ class AutomaticReduction {
   /// original: the input surface (edits are projected on it and measured against it).
   AutomaticReduction(MeshType& m, const SurfaceProjector& original, ReductionOptions opt = ReductionOptions())
       : m_(m), original_(original), opt_(std::move(opt)), ed_(m), comp_(ed_, &original, Quiet()), ops_(comp_.atomic()) {
-    // The per-edit check samples the input side on its sharp edges only (and, with
-    // denseHausdorffSamples, at two points per edge): elsewhere the true distance can be a
-    // little higher, so a tenth of the budget is kept back. The final symmetric distance is
+    // The per-edit check samples the input side on its sharp edges (and, if asked, at
+    // hausdorffSamplesPerEdge points per edge elsewhere): between samples the true distance
+    // can be higher, so a tenth of the budget is kept back. The final symmetric distance is
     // measured exactly by the caller (quality.h) and reported.
     budget_ = 0.9 * opt_.hausdorffBudgetPercent / 100.0 * double(original.Diagonal());
     // Input samples for the input-to-edited side of the Hausdorff check: the input's face
-    // centroids and vertices thinned to about two per edited edge length, plus everything on
-    // its sharp edges (creases, tips), where an edit cuts corners. Oriented by their face.
+    // centroids and vertices thinned to hausdorffSamplesPerEdge per edited edge length, plus
+    // everything on its sharp edges (creases, tips), where an edit cuts corners. Oriented by
+    // their face.
     const double h = MeanEdgeLength(m);
     std::vector<vcg::Point3f> samples, normals;
     SharpEdgeSamples(original.Mesh(), opt_.sharpEdgeDeg, samples, normals);
-    if (opt_.denseHausdorffSamples) ThinnedSurfaceSamples(original.Mesh(), h / 2, samples, normals);
+    if (opt_.hausdorffSamplesPerEdge > 0)
+      ThinnedSurfaceSamples(original.Mesh(), h / opt_.hausdorffSamplesPerEdge, samples, normals);
     originalSamples_.Build(std::move(samples), std::move(normals), MeanEdgeLength(m));
   }
 
@@ -750,6 +753,18 @@ class AutomaticReduction {
     Guard(AutomaticReduction& ar, const std::vector<int>& around)
         : r(ar), cp(ar.ed_.Mark()), angleBefore(ar.MinAngleAround(around)) {}
     bool Accept(const std::vector<int>& touched) {
+      // A protected vertex next to a changed one would see one of its faces change (a
+      // collapse or split re-points the faces around the vertex it removes or splits).
+      if (!r.opt_.frozen.empty()) {
+        std::vector<int> live;
+        for (int t : touched)
+          if (r.ed_.IsLive(t)) live.push_back(t);
+        for (int x : KRing(r.m_, live, 1))
+          if (r.Frozen(x)) {
+            Undo();
+            return false;
+          }
+      }
       const double after = r.MinAngleAround(touched);
       if (after < std::min(r.opt_.minAngleDeg, angleBefore) || r.DeviationAround(touched) > r.budget_) {
         Undo();

@@ -26,6 +26,20 @@ inline double EdgeLengthForVertexCount(double area, int vertices) {
   return vertices > 0 ? std::sqrt(2.0 * area / (std::sqrt(3.0) * vertices)) : 0;
 }
 
+namespace detail {
+// The remesher marks the faces of the surface it projects on, and we build its FF adjacency.
+// With optional (Ocf) components, as in MeshLab's CMeshO, a fresh copy has neither until they
+// are enabled (MeshLab's own filter does toProjectCopy.face.EnableMark()); static components
+// need nothing.
+template <class FaceContainer>
+auto EnableFaceMarkAndFF(FaceContainer& c, int) -> decltype(c.EnableMark(), c.EnableFFAdjacency(), void()) {
+  c.EnableMark();
+  c.EnableFFAdjacency();
+}
+template <class FaceContainer>
+void EnableFaceMarkAndFF(FaceContainer&, long) {}
+}  // namespace detail
+
 template <class MeshType>
 void RemeshIsotropic(MeshType& m, const RemeshOptions& o) {
   if (o.targetEdgeLength <= 0) return;
@@ -36,6 +50,7 @@ void RemeshIsotropic(MeshType& m, const RemeshOptions& o) {
   vcg::tri::UpdateBounding<MeshType>::Box(m);
   vcg::tri::UpdateNormal<MeshType>::PerVertexNormalizedPerFaceNormalized(m);
   MeshType input;
+  detail::EnableFaceMarkAndFF(input.face, 0);
   vcg::tri::Append<MeshType, MeshType>::MeshCopy(input, m);
   vcg::tri::UpdateTopology<MeshType>::FaceFace(input);
   vcg::tri::UpdateBounding<MeshType>::Box(input);

@@ -1,0 +1,199 @@
+// Unit tests of vcg_ext/irregular/automatic_reduction.h: exact outcomes on constructed meshes,
+// invariants, fidelity, determinism, protection and interruption on a real corpus mesh.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <set>
+
+#include <vcg/complex/algorithms/stat.h>
+
+#include <vcg_ext/irregular/automatic_reduction.h>
+#include <vcg_ext/irregular/mesh_checks.h>
+#include <vcg_ext/irregular/remeshing.h>
+
+#include "test_mesh.h"
+#include "test_util.h"
+
+using namespace vcg_ext::irregular;
+using test::TMesh;
+
+namespace {
+int Irregular(TMesh& m) { return int(test::IrregularVertices(m).size()); }
+
+/// A corpus mesh remeshed to about n vertices; *input: the surface as loaded.
+bool RemeshedCorpus(TMesh& m, const char* name, int n, std::unique_ptr<SurfaceProjector>* input) {
+  if (!test::LoadCorpus(m, name)) return false;
+  input->reset(new SurfaceProjector(m));
+  RemeshOptions ro;
+  ro.targetEdgeLength = EdgeLengthForVertexCount(vcg::tri::Stat<TMesh>::ComputeMeshArea(m), n);
+  RemeshIsotropic(m, ro);
+  return true;
+}
+}  // namespace
+
+TEST(AutomaticReduction, CancelsScatteredQuadruplesOnATorusDownToZero) {
+  TMesh m;
+  // 72 x 24 on radii 3 and 1: near-equilateral triangles (a skinny torus would block every
+  // edit by the angle bound)
+  test::RegularTorus(m, 72, 24, 3.f, 1.f);
+  SurfaceProjector original(m);
+  {
+    MeshEditor<TMesh> ed(m);
+    CompositeOperations<TMesh> co(ed, &original);
+    // three 5-5-7-7 quadruples whose two 5-7 pairs are 1, 3 and 5 pair steps apart, far from
+    // each other
+    int spacing = 1;
+    for (int ring : {10, 34, 58}) {
+      CompositeOutcome q = co.GenerateQuadruple(ring * 24 + 12, 0, spacing);
+      ASSERT_TRUE(q) << q.result.reason;
+      spacing += 2;
+    }
+    ed.Commit();
+  }
+  vcg::tri::Allocator<TMesh>::CompactEveryVector(m);
+  test::UpdateTopology(m);
+  ASSERT_EQ(Irregular(m), 12);
+  ASSERT_TRUE(CheckInvariants(m).ok);
+  AutomaticReduction<TMesh> ar(m, original);
+  ReductionReport r = ar.Run();
+  ASSERT_TRUE(r) << r.result.reason;
+  EXPECT_EQ(r.irregularBefore, 12);
+  EXPECT_EQ(r.irregularAfter, 0);  // a torus can be regular (chi = 0)
+  EXPECT_EQ(Irregular(m), 0);
+  Result inv = CheckInvariants(m);
+  EXPECT_TRUE(inv.ok) << inv.reason;
+}
+
+TEST(AutomaticReduction, KeepsTheTwelveV5OfASphereAndChangesNoConnectivity) {
+  TMesh m;
+  test::Icosphere(m, 3);
+  const auto faces = test::CanonicalFaces(m);
+  SurfaceProjector original(m);
+  AutomaticReduction<TMesh> ar(m, original);
+  ReductionReport r = ar.Run();
+  ASSERT_TRUE(r) << r.result.reason;
+  EXPECT_EQ(r.irregularAfter, 12);
+  EXPECT_EQ(r.histogramAfter, (std::map<int, int>{{5, 12}, {6, int(m.vert.size()) - 12}}));
+  EXPECT_EQ(test::CanonicalFaces(m), faces);  // 12 is the floor: nothing to cancel
+}
+
+TEST(AutomaticReduction, RealMeshKeepsInvariantsFidelityAndAngles) {
+  TMesh m;
+  std::unique_ptr<SurfaceProjector> input;
+  if (!RemeshedCorpus(m, "bunny00.off", 6000, &input)) GTEST_SKIP() << "corpus mesh missing";
+  const int before = Irregular(m);
+  ReductionOptions opt;
+  AutomaticReduction<TMesh> ar(m, *input, opt);
+  ReductionReport r = ar.Run();
+  ASSERT_TRUE(r) << r.result.reason;
+  Result inv = CheckInvariants(m);
+  ASSERT_TRUE(inv.ok) << inv.reason;
+  const int after = Irregular(m);
+  EXPECT_EQ(after, r.irregularAfter);
+  EXPECT_EQ(before, r.irregularBefore);
+  EXPECT_LT(after * 10, before) << before << " -> " << after;  // at least 90% fewer
+  EXPECT_GE(after, 12);                                         // Gauss-Bonnet floor of a sphere
+  // The per-edit check samples the input on its sharp edges only; on this coarse mesh (edges
+  // about 1.3% of the diagonal) the exact distance overshoots the budget by up to a fifth.
+  EXPECT_LE(HausdorffPercent(m, *input), opt.hausdorffBudgetPercent * 1.2);
+  ShapeMeasures s = MeasureShape(m);
+  EXPECT_LE(s.shareBelow30, 0.01);
+  EXPECT_GT(r.localCancellations + r.transports + r.glides + r.splitAbsorptions, 0);
+}
+
+TEST(AutomaticReduction, IsDeterministic) {
+  TMesh a, b;
+  std::unique_ptr<SurfaceProjector> ia, ib;
+  if (!RemeshedCorpus(a, "knot1.off", 3000, &ia)) GTEST_SKIP() << "corpus mesh missing";
+  ASSERT_TRUE(RemeshedCorpus(b, "knot1.off", 3000, &ib));
+  ASSERT_TRUE(AutomaticReduction<TMesh>(a, *ia).Run());
+  ASSERT_TRUE(AutomaticReduction<TMesh>(b, *ib).Run());
+  ASSERT_EQ(a.vert.size(), b.vert.size());
+  EXPECT_EQ(test::CanonicalFaces(a), test::CanonicalFaces(b));
+  for (size_t i = 0; i < a.vert.size(); ++i) ASSERT_EQ(a.vert[i].P(), b.vert[i].P()) << i;
+}
+
+TEST(AutomaticReduction, FrozenVerticesAndTheirFacesAreUntouched) {
+  TMesh m;
+  std::unique_ptr<SurfaceProjector> input;
+  if (!RemeshedCorpus(m, "bunny00.off", 4000, &input)) GTEST_SKIP() << "corpus mesh missing";
+  // freeze the half with x < 0 (a protected selection with its 1-ring, as the filter does)
+  ReductionOptions opt;
+  opt.frozen.assign(m.vert.size(), 0);
+  std::vector<vcg::Point3f> pos;
+  for (size_t i = 0; i < m.vert.size(); ++i) {
+    opt.frozen[i] = m.vert[i].P()[0] < 0;
+    pos.push_back(m.vert[i].P());
+  }
+  // Frozen vertices never move and are never deleted: identify them (and the faces between
+  // them) by position, which survives compaction.
+  std::set<std::array<float, 3>> frozenPos;
+  for (size_t i = 0; i < m.vert.size(); ++i)
+    if (opt.frozen[i]) frozenPos.insert({pos[i][0], pos[i][1], pos[i][2]});
+  auto isFrozen = [&](const vcg::Point3f& p) { return frozenPos.count({p[0], p[1], p[2]}) > 0; };
+  auto frozenFaces = [&](TMesh& mesh) {
+    std::vector<std::array<float, 9>> out;
+    for (auto& f : mesh.face) {
+      if (f.IsD()) continue;
+      bool all = true;
+      for (int z = 0; z < 3; ++z) all = all && isFrozen(f.cP(z));
+      if (!all) continue;
+      std::array<float, 9> t;
+      int s = 0;  // rotate to the smallest x first, so the cycle is canonical
+      for (int z = 1; z < 3; ++z)
+        if (f.cP(z)[0] < f.cP(s)[0]) s = z;
+      for (int z = 0; z < 3; ++z)
+        for (int k = 0; k < 3; ++k) t[size_t(3 * z + k)] = f.cP((s + z) % 3)[k];
+      out.push_back(t);
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+  };
+  const auto before = frozenFaces(m);
+  const int frozenIrregularBefore = [&] {
+    auto vf = ComputeValences(m);
+    int n = 0;
+    for (size_t i = 0; i < m.vert.size(); ++i) n += opt.frozen[i] && vf.IsIrregular(i);
+    return n;
+  }();
+  AutomaticReduction<TMesh> ar(m, *input, opt);
+  ReductionReport r = ar.Run();
+  ASSERT_TRUE(r) << r.result.reason;
+  ASSERT_TRUE(CheckInvariants(m).ok);
+  EXPECT_EQ(frozenFaces(m), before);
+  size_t present = 0;
+  for (auto& v : m.vert) present += !v.IsD() && isFrozen(v.cP());
+  EXPECT_EQ(present, frozenPos.size());  // no frozen vertex moved or was removed
+  EXPECT_LT(r.irregularAfter, r.irregularBefore);            // the free half was reduced
+  EXPECT_GE(r.irregularAfter, frozenIrregularBefore);         // the frozen half kept its own
+}
+
+TEST(AutomaticReduction, InterruptedRunLeavesTheMeshBitIdentical) {
+  TMesh m;
+  std::unique_ptr<SurfaceProjector> input;
+  if (!RemeshedCorpus(m, "bunny00.off", 3000, &input)) GTEST_SKIP() << "corpus mesh missing";
+  const test::MeshSnapshot before = test::Snapshot(m);
+  for (int stopAt : {1, 5, 15}) {
+    ReductionOptions opt;
+    int calls = 0;
+    opt.progress = [&](int, const char*) { return ++calls < stopAt; };
+    AutomaticReduction<TMesh> ar(m, *input, opt);
+    ReductionReport r = ar.Run();
+    EXPECT_FALSE(r);
+    EXPECT_TRUE(r.interrupted);
+    EXPECT_TRUE(test::Snapshot(m) == before) << "stopped at progress call " << stopAt;
+  }
+}
+
+TEST(AutomaticReduction, TimeLimitStopsEditingButKeepsAValidMesh) {
+  TMesh m;
+  std::unique_ptr<SurfaceProjector> input;
+  if (!RemeshedCorpus(m, "bunny00.off", 3000, &input)) GTEST_SKIP() << "corpus mesh missing";
+  ReductionOptions opt;
+  opt.timeLimitSeconds = 0;
+  AutomaticReduction<TMesh> ar(m, *input, opt);
+  ReductionReport r = ar.Run();
+  ASSERT_TRUE(r) << r.result.reason;
+  EXPECT_TRUE(r.timeLimitReached);
+  EXPECT_TRUE(CheckInvariants(m).ok);
+}
