@@ -37,7 +37,7 @@ void FilterIrregularPlugin::initAutomaticReductionParameters(MeshModel& mm, Rich
                          "An edit is undone if, after local relaxation, a triangle around it has a smaller "
                          "angle than this (unless one already had before). This keeps the irregular vertices "
                          "the surface needs (v5 on tips, v7 in saddles)."));
-  par.addParam(RichInt("maxTravel", 8, "Pair travel (steps)",
+  par.addParam(RichInt("maxTravel", 12, "Pair travel (steps)",
                        "How far a 5-7 pair moves toward another irregular vertex to cancel with it "
                        "(straight glides go up to four times farther)."));
   par.addParam(RichEnum("protect", 0,

@@ -660,29 +660,37 @@ class AutomaticReduction {
     std::vector<int> live;
     for (int v : seeds)
       if (ed_.IsLive(v)) live.push_back(v);
-    double mx = 0;
     // the local relaxation after an edit moves its 2-ring, which changes the faces up to there
     const std::vector<int> region = KRing(m_, live, 2);
-    for (int v : region)
-      for (auto& c : ed_.Star(v).corners) {
-        const FaceType* f = c.f;
-        for (const CoordType& p : {CoordType((f->cP(0) + f->cP(1) + f->cP(2)) / 3),
-                                   CoordType((f->cP(c.z) + f->cP((c.z + 1) % 3)) / 2)}) {
-          float d = 0;
-          original_.Closest(vcg::Point3f::Construct(p), &d);
-          mx = std::max(mx, double(d));
-        }
-      }
-    // (b) the input samples near the changed faces against the edited surface there. The
-    // faces are hashed on a grid so each sample is compared with the faces around it only:
-    // O(region) for any edit size. Faces of one more ring are included so a sample by the
-    // border finds its true closest face; only samples closest to a changed face count, and
-    // only on the same side (a thin part's other sheet is not this edit's business).
     std::vector<const FaceType*> changed, all;
     std::unordered_set<const FaceType*> seen;
     for (int v : region)
       for (auto& c : ed_.Star(v).corners)
         if (seen.insert(c.f).second) changed.push_back(c.f);
+    // (a) each changed face's centroid and edge midpoints (an edge shared by two changed faces
+    // once) against the input. Only "above the budget or not" matters to the caller, so a
+    // query looks no farther than just past the budget, and the first excess ends the check.
+    const float reach = float(1.01 * budget_) + 1e-12f;
+    double mx = 0;
+    auto probe = [&](const CoordType& p) {
+      float d = 0;
+      original_.Closest(vcg::Point3f::Construct(p), &d, nullptr, reach);
+      mx = std::max(mx, double(d));
+      return mx <= budget_;
+    };
+    for (const FaceType* f : changed) {
+      if (!probe(CoordType((f->cP(0) + f->cP(1) + f->cP(2)) / 3))) return mx;
+      for (int z = 0; z < 3; ++z) {
+        const FaceType* g = f->cFFp(z);
+        if (g != f && g < f && seen.count(g)) continue;  // that edge is probed from g
+        if (!probe(CoordType((f->cP(z) + f->cP((z + 1) % 3)) / 2))) return mx;
+      }
+    }
+    // (b) the input samples near the changed faces against the edited surface there. The
+    // faces are hashed on a grid so each sample is compared with the faces around it only:
+    // O(region) for any edit size. Faces of one more ring are included so a sample by the
+    // border finds its true closest face; only samples closest to a changed face count, and
+    // only on the same side (a thin part's other sheet is not this edit's business).
     all = changed;
     for (int v : KRing(m_, region, 1))
       for (auto& c : ed_.Star(v).corners)

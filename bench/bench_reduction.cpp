@@ -1,0 +1,83 @@
+// Benchmark of the automatic reduction (vcg_ext/irregular/automatic_reduction.h) on corpus
+// meshes, without MeshLab: each model is remeshed isotropically to about N vertices (vcglib's
+// IsotropicRemeshing, the code behind MeshLab's "Isotropic Explicit Remeshing"), then reduced
+// with the default options. Prints one row per model.
+//   usage: bench_reduction [vertices=20000] [option=value ...] [model.off ...]
+// options (ReductionOptions fields): maxTravel, glideTravel, targetsPerPair, maxSweeps,
+// localRelaxIterations, minAngle, budget (Hausdorff, percent of the diagonal).
+// The end-to-end comparison with MeshLab's remeshing through meshlabserver is
+// scripts/bench_reduction.py; this executable isolates the algorithm's own time.
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include <vcg/complex/algorithms/stat.h>
+
+#include <vcg_ext/irregular/automatic_reduction.h>
+#include <vcg_ext/irregular/quality.h>
+#include <vcg_ext/irregular/remeshing.h>
+
+#include "../tests/unit/test_mesh.h"
+
+using namespace vcg_ext::irregular;
+using test::TMesh;
+
+int main(int argc, char** argv) {
+  const int n = argc > 1 ? std::atoi(argv[1]) : 20000;
+  std::vector<std::string> models;
+  ReductionOptions opt;
+  for (int i = 2; i < argc; ++i) {
+    const std::string a = argv[i];
+    const size_t eq = a.find('=');
+    if (eq == std::string::npos) {
+      models.push_back(a);
+      continue;
+    }
+    const std::string key = a.substr(0, eq);
+    const double v = std::atof(a.c_str() + eq + 1);
+    if (key == "maxTravel") opt.maxTravel = int(v);
+    else if (key == "glideTravel") opt.glideTravel = int(v);
+    else if (key == "targetsPerPair") opt.targetsPerPair = int(v);
+    else if (key == "maxSweeps") opt.maxSweeps = int(v);
+    else if (key == "localRelaxIterations") opt.localRelaxIterations = int(v);
+    else if (key == "minAngle") opt.minAngleDeg = v;
+    else if (key == "budget") opt.hausdorffBudgetPercent = v;
+    else {
+      std::fprintf(stderr, "unknown option %s\n", key.c_str());
+      return 2;
+    }
+  }
+  if (models.empty())
+    models = {"bunny00.off", "armadillo.off", "fandisk.off", "camel.off", "homer.off", "elephant.off", "knot1.off"};
+  std::printf("%-14s %7s %6s %8s %6s %7s %8s %7s %8s %8s %8s\n", "model", "V", "chi", "irr.in", "irr", "irr%",
+              "H%diag", "minang", "<30deg%", "remesh_s", "reduce_s");
+  for (const std::string& name : models) {
+    TMesh m;
+    if (!test::LoadCorpus(m, name)) {
+      std::printf("%-14s missing\n", name.c_str());
+      continue;
+    }
+    SurfaceProjector input(m);
+    auto t0 = std::chrono::steady_clock::now();
+    RemeshOptions ro;
+    ro.targetEdgeLength = EdgeLengthForVertexCount(vcg::tri::Stat<TMesh>::ComputeMeshArea(m), n);
+    RemeshIsotropic(m, ro);
+    auto t1 = std::chrono::steady_clock::now();
+    AutomaticReduction<TMesh> ar(m, input, opt);
+    ReductionReport r = ar.Run();
+    auto t2 = std::chrono::steady_clock::now();
+    if (!r) {
+      std::printf("%-14s refused: %s\n", name.c_str(), r.result.reason.c_str());
+      continue;
+    }
+    ShapeMeasures s = MeasureShape(m);
+    std::printf("%-14s %7d %6d %8d %6d %7.2f %8.3f %7.1f %8.2f %8.2f %8.2f\n", name.c_str(), m.vn,
+                Summarize(m).eulerCharacteristic, r.irregularBefore, r.irregularAfter, 100.0 * r.irregularAfter / m.vn,
+                HausdorffPercent(m, input), s.minAngleDeg, 100 * s.shareBelow30,
+                std::chrono::duration<double>(t1 - t0).count(), std::chrono::duration<double>(t2 - t1).count());
+    std::fflush(stdout);
+  }
+  return 0;
+}
