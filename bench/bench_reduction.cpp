@@ -51,8 +51,8 @@ int main(int argc, char** argv) {
   }
   if (models.empty())
     models = {"bunny00.off", "armadillo.off", "fandisk.off", "camel.off", "homer.off", "elephant.off", "knot1.off"};
-  std::printf("%-14s %7s %6s %8s %6s %7s %8s %7s %8s %8s %8s\n", "model", "V", "chi", "irr.in", "irr", "irr%",
-              "H%diag", "minang", "<30deg%", "remesh_s", "reduce_s");
+  std::printf("%-14s %7s %6s %8s %6s %7s %8s %7s %8s %8s %8s %7s\n", "model", "V", "chi", "irr.in", "irr", "irr%",
+              "H%diag", "minang", "<30deg%", "remesh_s", "reduce_s", "retries");
   for (const std::string& name : models) {
     TMesh m;
     if (!test::LoadCorpus(m, name)) {
@@ -73,10 +73,10 @@ int main(int argc, char** argv) {
       continue;
     }
     ShapeMeasures s = MeasureShape(m);
-    std::printf("%-14s %7d %6d %8d %6d %7.2f %8.3f %7.1f %8.2f %8.2f %8.2f\n", name.c_str(), m.vn,
+    std::printf("%-14s %7d %6d %8d %6d %7.2f %8.3f %7.1f %8.2f %8.2f %8.2f %5d%s\n", name.c_str(), m.vn,
                 Summarize(m).eulerCharacteristic, r.irregularBefore, r.irregularAfter, 100.0 * r.irregularAfter / m.vn,
                 HausdorffPercent(m, input), s.minAngleDeg, 100 * s.shareBelow30,
-                std::chrono::duration<double>(t1 - t0).count(), std::chrono::duration<double>(t2 - t1).count());
+                std::chrono::duration<double>(t1 - t0).count(), std::chrono::duration<double>(t2 - t1).count(), r.budgetRetries, r.allUndone ? " (all undone)" : "");
     std::fflush(stdout);
   }
   return 0;

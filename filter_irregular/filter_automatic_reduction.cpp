@@ -92,8 +92,16 @@ bool FilterIrregularPlugin::automaticReduction(MeshModel& mm, const RichParamete
   irr::TopologySummary before = irr::Summarize(m);
   logShape("Before", m);
 
-  // Remeshing replaces the mesh: keep a copy to give back if the run is interrupted.
+  // Remeshing replaces the mesh: keep a copy to give back if the run is refused or interrupted.
   std::unique_ptr<CMeshO> saved;
+  auto restore = [&] {
+    if (!saved) return;
+    m.Clear();
+    vcg::tri::Append<CMeshO, CMeshO>::MeshCopy(m, *saved, false, true);
+    vcg::tri::UpdateTopology<CMeshO>::FaceFace(m);
+    vcg::tri::UpdateTopology<CMeshO>::VertexFace(m);
+    vcg::tri::UpdateBounding<CMeshO>::Box(m);
+  };
   if (remeshLength > 0) {
     saved.reset(new CMeshO);
     vcg::tri::Append<CMeshO, CMeshO>::MeshCopy(*saved, m, false, true);
@@ -103,8 +111,18 @@ bool FilterIrregularPlugin::automaticReduction(MeshModel& mm, const RichParamete
     irr::RemeshOptions ro;
     ro.targetEdgeLength = remeshLength;
     irr::RemeshIsotropic(m, ro);
-    Log("Isotropic remeshing to edge length %.5g: %d vertices, %d irregular", remeshLength, m.VN(),
-        irr::Summarize(m).irregular);
+    const double remeshDistance = irr::HausdorffPercent(m, original);
+    Log("Isotropic remeshing to edge length %.5g: %d vertices, %d irregular, %.4f%% of the diagonal from the input",
+        remeshLength, m.VN(), irr::Summarize(m).irregular, remeshDistance);
+    // The budget bounds the result's distance to the filter's input: remeshing counts.
+    if (remeshDistance > par.getFloat("hausdorffBudget")) {
+      restore();
+      return refuse(QString("Remeshing to edge length %1 alone leaves the input by %2% of the diagonal, more than the "
+                            "Hausdorff budget (%3%): use a shorter edge length or a larger budget.")
+                        .arg(remeshLength)
+                        .arg(remeshDistance, 0, 'f', 3)
+                        .arg(par.getFloat("hausdorffBudget")));
+    }
   }
 
   irr::ReductionOptions opt;
@@ -120,13 +138,7 @@ bool FilterIrregularPlugin::automaticReduction(MeshModel& mm, const RichParamete
   irr::AutomaticReduction<CMeshO> reduction(m, original, opt);
   irr::ReductionReport rep = reduction.Run();
   if (!rep) {
-    if (saved) {
-      m.Clear();
-      vcg::tri::Append<CMeshO, CMeshO>::MeshCopy(m, *saved, false, true);
-      vcg::tri::UpdateTopology<CMeshO>::FaceFace(m);
-      vcg::tri::UpdateTopology<CMeshO>::VertexFace(m);
-      vcg::tri::UpdateBounding<CMeshO>::Box(m);
-    }
+    restore();
     return refuse(QString::fromStdString(rep.result.reason));
   }
   vcg::tri::UpdateNormal<CMeshO>::PerVertexNormalizedPerFace(m);
@@ -150,8 +162,17 @@ bool FilterIrregularPlugin::automaticReduction(MeshModel& mm, const RichParamete
   if (rep.globalRelaxUndone) Log("The final global relaxation lowered the smallest angle and was undone");
   if (rep.finalSweepsUndone) Log("The final local relaxation sweeps overshot the Hausdorff budget and were undone");
   logShape("After", m);
-  Log("Hausdorff distance to the input: %.4f%% of the bounding box diagonal (budget %.3f%%)",
-      irr::HausdorffPercent(m, original), opt.hausdorffBudgetPercent);
+  Log("Hausdorff distance to the input: %.4f%% of the bounding box diagonal (budget %.3f%%)", rep.hausdorffPercent,
+      opt.hausdorffBudgetPercent);
+  if (rep.budgetRetries > 0)
+    Log(GLLogStream::WARNING,
+        "The first run overshot the Hausdorff budget (the per-edit checks sample the surface): redone %d time(s) "
+        "with a tighter per-edit budget",
+        rep.budgetRetries);
+  if (rep.allUndone)
+    Log(GLLogStream::WARNING,
+        "Every run overshot the Hausdorff budget: all reduction edits were undone. Raise the budget or remesh "
+        "finer first.");
   Log("Time: %.2f s (reduction %.2f s)", seconds, rep.seconds);
   // Keep a protected selection; otherwise select what remains irregular.
   paintAndLog(mm, true, protect == 0 ? 1 : 0, 0, true);

@@ -12,7 +12,7 @@ mkdir -p "$deps"
 
 pkgs=(meshlab libcgal-demo xvfb xauth cmake ninja-build g++ pkg-config dpkg-dev
       qtbase5-dev libqt5opengl5-dev libqt5xmlpatterns5-dev libglew-dev libeigen3-dev
-      libgtest-dev libbenchmark-dev zlib1g-dev python3-pytest python3-numpy)
+      libgtest-dev libbenchmark-dev zlib1g-dev python3-pytest python3-numpy python3-scipy)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

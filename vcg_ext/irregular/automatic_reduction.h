@@ -81,6 +81,9 @@ struct ReductionReport {
   bool finalSweepsUndone = false;  ///< the final local sweeps overshot the Hausdorff budget and were undone
   bool timeLimitReached = false;
   bool interrupted = false;
+  double hausdorffPercent = 0;  ///< symmetric distance of the result to the input (HausdorffPercent)
+  int budgetRetries = 0;        ///< reruns with a tighter per-edit budget after overshooting
+  bool allUndone = false;       ///< even the retries overshot: the mesh was given back unchanged
   double seconds = 0;
   explicit operator bool() const { return result.ok; }
 };
@@ -100,23 +103,73 @@ class AutomaticReduction {
     // can be higher, so a tenth of the budget is kept back. The final symmetric distance is
     // measured exactly by the caller (quality.h) and reported.
     budget_ = 0.9 * opt_.hausdorffBudgetPercent / 100.0 * double(original.Diagonal());
-    // Input samples for the input-to-edited side of the Hausdorff check: the input's face
-    // centroids and vertices thinned to hausdorffSamplesPerEdge per edited edge length, plus
-    // everything on its sharp edges (creases, tips), where an edit cuts corners. Oriented by
-    // their face.
-    const double h = MeanEdgeLength(m);
-    std::vector<vcg::Point3f> samples, normals;
-    SharpEdgeSamples(original.Mesh(), opt_.sharpEdgeDeg, samples, normals);
-    if (opt_.hausdorffSamplesPerEdge > 0)
-      ThinnedSurfaceSamples(original.Mesh(), h / opt_.hausdorffSamplesPerEdge, samples, normals);
-    originalSamples_.Build(std::move(samples), std::move(normals), MeanEdgeLength(m));
+    BuildInputSamples(opt_.hausdorffSamplesPerEdge);
   }
 
+  /// Runs the reduction. Postcondition on success: the symmetric Hausdorff distance of the
+  /// result to the input, as measured by HausdorffPercent (quality.h), is within the budget
+  /// (the per-edit checks sample; a final measurement verifies, and a run that overshoots is
+  /// redone with a tighter per-edit budget, at worst undone whole).
   ReductionReport Run() {
     ReductionReport rep;
     t0_ = std::chrono::steady_clock::now();
     const auto start = ed_.Mark();
     Histogram(rep.histogramBefore, rep.irregularBefore);
+    for (int attempt = 0;; ++attempt) {
+      ReductionReport r;
+      r.histogramBefore = rep.histogramBefore;
+      r.irregularBefore = rep.irregularBefore;
+      r.budgetRetries = attempt;
+      Edit(r);
+      if (r.interrupted) {
+        ed_.RollbackTo(start);
+        r.result = Result::Fail("interrupted: the mesh is unchanged");
+        return r;
+      }
+      r.hausdorffPercent = HausdorffPercent(m_, original_);
+      // the independent check of the tests samples more densely than HausdorffPercent: keep
+      // a small margin below the budget
+      const bool within = r.hausdorffPercent <= kVerifyMargin * opt_.hausdorffBudgetPercent;
+      if (within || attempt == kMaxBudgetRetries) {
+        rep = r;
+        if (!within) {
+          // even the tightest retry overshoots: give the input back unchanged
+          ed_.RollbackTo(start);
+          rep.allUndone = true;
+          rep.hausdorffPercent = HausdorffPercent(m_, original_);
+        }
+        break;
+      }
+      // Over the budget: start again with the per-edit check stricter: the input sampled all
+      // over (not only on sharp edges), and the per-edit budget lowered in proportion to the
+      // overshoot (gently: where the input is curved, the mesh before the edits may already
+      // use most of the budget, and a much lower one would forbid every edit there).
+      ed_.RollbackTo(start);
+      budget_ *= std::max(0.5, std::min(0.95, kVerifyMargin * opt_.hausdorffBudgetPercent / r.hausdorffPercent));
+      if (opt_.hausdorffSamplesPerEdge < 2) BuildInputSamples(opt_.hausdorffSamplesPerEdge = 2);
+      epoch_ = 0;
+      editedAt_.clear();
+      failedAt_.clear();
+      globalKept_ = sweepsKept_ = true;
+    }
+    ed_.Commit();
+    vcg::tri::Allocator<MeshType>::CompactEveryVector(m_);
+    vcg::tri::UpdateTopology<MeshType>::FaceFace(m_);
+    vcg::tri::UpdateTopology<MeshType>::VertexFace(m_);
+    Histogram(rep.histogramAfter, rep.irregularAfter);
+    rep.globalRelaxUndone = !globalKept_;
+    rep.finalSweepsUndone = !sweepsKept_;
+    rep.seconds = Elapsed();
+    rep.result = Result::Ok();
+    return rep;
+  }
+
+ private:
+  static constexpr double kVerifyMargin = 0.97;  ///< final distance must be under this share of the budget
+  static constexpr int kMaxBudgetRetries = 2;     ///< reruns with a tighter per-edit budget
+
+  /// One pass of the whole pipeline (type change, sweeps, final relaxation) into rep.
+  void Edit(ReductionReport& rep) {
     bool go = Stage(rep, 0, "Splitting high and low valences") && ReduceTypes(rep);
     // Growing travel: cheap local cancellations everywhere first, so the long transports only
     // run for what is left.
@@ -132,29 +185,24 @@ class AutomaticReduction {
         travel = opt_.maxTravel;
       }
     }
-    if (!rep.interrupted) {
-      // the final relaxation runs even when the time limit stopped the editing
-      if (!opt_.progress || opt_.progress(90, "Relaxing")) FinalRelax();
-      else rep.interrupted = true;
-    }
-    if (rep.interrupted) {
-      ed_.RollbackTo(start);
-      rep.result = Result::Fail("interrupted: the mesh is unchanged");
-      return rep;
-    }
-    ed_.Commit();
-    vcg::tri::Allocator<MeshType>::CompactEveryVector(m_);
-    vcg::tri::UpdateTopology<MeshType>::FaceFace(m_);
-    vcg::tri::UpdateTopology<MeshType>::VertexFace(m_);
-    Histogram(rep.histogramAfter, rep.irregularAfter);
-    rep.globalRelaxUndone = !globalKept_;
-    rep.finalSweepsUndone = !sweepsKept_;
-    rep.seconds = Elapsed();
-    rep.result = Result::Ok();
-    return rep;
+    if (rep.interrupted) return;
+    // the final relaxation runs even when the time limit stopped the editing
+    if (!opt_.progress || opt_.progress(90, "Relaxing")) FinalRelax();
+    else rep.interrupted = true;
   }
 
- private:
+  /// Input samples for the input-to-edited side of the Hausdorff check: the input's face
+  /// centroids and vertices thinned to perEdge per edited edge length (none if 0), plus
+  /// everything on its sharp edges (creases, tips), where an edit cuts corners. Oriented by
+  /// their face.
+  void BuildInputSamples(double perEdge) {
+    const double h = MeanEdgeLength(m_);
+    std::vector<vcg::Point3f> samples, normals;
+    SharpEdgeSamples(original_.Mesh(), opt_.sharpEdgeDeg, samples, normals);
+    if (perEdge > 0) ThinnedSurfaceSamples(original_.Mesh(), h / perEdge, samples, normals);
+    originalSamples_.Build(std::move(samples), std::move(normals), h);
+  }
+
   /// Ends and midpoints of the edges of m whose dihedral angle exceeds angleDeg, with the
   /// normal of each face along the edge. O(F log F).
   static void SharpEdgeSamples(const SurfaceProjector::PMesh& m, double angleDeg, std::vector<vcg::Point3f>& pts,

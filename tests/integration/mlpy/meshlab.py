@@ -13,6 +13,7 @@ Every parameter of a filter must be listed, in the filter's declaration order, o
 aborts; the keyword form keeps the order in which the keywords are written.
 """
 import os
+import re
 import shutil
 import subprocess
 import tempfile
@@ -30,6 +31,7 @@ __all__ = [
     "boundary_mask", "euler_characteristic", "boundary_loop_count", "component_count", "genus",
     "is_edge_manifold", "is_consistently_oriented", "irregular_mask", "gauss_bonnet_sum",
     "selected_mask", "deleted_mask", "check_invariants",
+    "closest_point_distances", "surface_samples", "hausdorff", "triangle_angles", "shape_measures",
 ]
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -183,10 +185,11 @@ def write_script(filters, path):
     return path
 
 
-def select_vertices(indices, strict=False):
-    """MeshLab's own 'Conditional Vertex Selection' of the given vertex indices."""
-    cond = " || ".join("(vi==%d)" % int(i) for i in indices) or "false"
-    return Filter("Conditional Vertex Selection", condSelect=cond, strictSelect=strict)
+def select_vertices(indices):
+    """MeshLab's own 'Conditional Vertex Selection' of the given vertex indices (in 2020.09 its
+    only parameter is condSelect; a script with more aborts meshlabserver)."""
+    cond = " || ".join("(vi==%d)" % int(i) for i in indices) or "(vi < 0)"
+    return Filter("Conditional Vertex Selection", condSelect=cond)
 
 
 # ------------------------------------------------------------------ running meshlabserver
@@ -617,3 +620,88 @@ def check_invariants(mesh):
     interior = referenced_mask(mesh) & ~boundary_vertex_mask(mesh)
     assert (valences(mesh)[interior] >= 3).all(), "interior valence < 3"
     assert gauss_bonnet_sum(mesh) == 6 * euler_characteristic(mesh), "Gauss-Bonnet fails"
+
+
+# ------------------------------------------------------------------ measures (numpy, scipy)
+def closest_point_distances(points, mesh, candidates=12):
+    """Distance from each point to the surface of mesh: exact point-triangle distances
+    (Ericson, Real-Time Collision Detection, 5.1.5) to the `candidates` triangles whose
+    centroids are nearest (scipy's cKDTree). On meshes of even triangles the closest one is
+    among them; otherwise the result can only be too large, never too small."""
+    from scipy.spatial import cKDTree
+    tri = mesh.vertices[mesh.faces]
+    tree = cKDTree(tri.mean(axis=1))
+    k = min(candidates, len(tri))
+    chunk = 50000  # bounded memory: (chunk, k, 3) arrays
+    return np.concatenate([_closest_in(points[i:i + chunk], tri, tree, k) for i in range(0, len(points), chunk)])
+
+
+def _closest_in(points, tri, tree, k):
+    _, idx = tree.query(points, k=k)
+    idx = idx.reshape(len(points), k)
+    p = np.repeat(points[:, None, :], k, axis=1)
+    a, b, c = tri[idx, 0], tri[idx, 1], tri[idx, 2]
+    ab, ac, ap = b - a, c - a, p - a
+    d1, d2 = (ab * ap).sum(-1), (ac * ap).sum(-1)
+    bp = p - b
+    d3, d4 = (ab * bp).sum(-1), (ac * bp).sum(-1)
+    cp = p - c
+    d5, d6 = (ab * cp).sum(-1), (ac * cp).sum(-1)
+    va, vb, vc = d3 * d6 - d5 * d4, d5 * d2 - d1 * d6, d1 * d4 - d3 * d2
+    with np.errstate(divide="ignore", invalid="ignore"):
+        den = va + vb + vc
+        v, w = vb / den, vc / den
+        q = a + ab * v[..., None] + ac * w[..., None]  # inside the face
+        t_ab = d1 / (d1 - d3)
+        q = np.where(((vc <= 0) & (d1 >= 0) & (d3 <= 0))[..., None], a + ab * t_ab[..., None], q)
+        t_ac = d2 / (d2 - d6)
+        q = np.where(((vb <= 0) & (d2 >= 0) & (d6 <= 0))[..., None], a + ac * t_ac[..., None], q)
+        t_bc = (d4 - d3) / ((d4 - d3) + (d5 - d6))
+        q = np.where(((va <= 0) & (d4 - d3 >= 0) & (d5 - d6 >= 0))[..., None], b + (c - b) * t_bc[..., None], q)
+    q = np.where(((d1 <= 0) & (d2 <= 0))[..., None], a, q)
+    q = np.where(((d3 >= 0) & (d4 <= d3))[..., None], b, q)
+    q = np.where(((d6 >= 0) & (d5 <= d6))[..., None], c, q)
+    q = np.where(np.isfinite(q), q, a)  # degenerate triangles: their first corner
+    return np.linalg.norm(p - q, axis=-1).min(axis=1)
+
+
+def surface_samples(mesh, per_edge=2):
+    """Vertices, points along every edge and inside every face (where a surface leaves
+    another one farthest: corners, creases, face interiors)."""
+    tri = mesh.vertices[mesh.faces]
+    pts = [mesh.vertices[referenced_mask(mesh)], tri.mean(axis=1)]
+    for t in np.arange(1, per_edge + 1) / (per_edge + 1):
+        for z in range(3):
+            pts.append(tri[:, z] * (1 - t) + tri[:, (z + 1) % 3] * t)
+    for u, v in [(0.6, 0.2), (0.2, 0.6), (0.2, 0.2)]:
+        pts.append(tri[:, 0] * u + tri[:, 1] * v + tri[:, 2] * (1 - u - v))
+    return np.concatenate(pts)
+
+
+def hausdorff(mesh_a, mesh_b):
+    """Symmetric Hausdorff distance between two meshes (objects or file paths), measured
+    here with numpy and scipy, independently of the plugin (MeshLab 2020.09's own 'Hausdorff
+    Distance' filter aborts on an assertion of vcg's grid on such pairs). Returns
+    (max a->b, max b->a), absolute."""
+    a = read_mesh(data_path(mesh_a)) if isinstance(mesh_a, str) else mesh_a
+    b = read_mesh(data_path(mesh_b)) if isinstance(mesh_b, str) else mesh_b
+    return (float(closest_point_distances(surface_samples(a), b).max()),
+            float(closest_point_distances(surface_samples(b), a).max()))
+
+
+def triangle_angles(mesh):
+    """(F, 3) interior angles in degrees."""
+    p = mesh.vertices[mesh.faces]
+    out = np.empty(mesh.faces.shape)
+    for k in range(3):
+        u = p[:, (k + 1) % 3] - p[:, k]
+        v = p[:, (k + 2) % 3] - p[:, k]
+        c = (u * v).sum(1) / (np.linalg.norm(u, axis=1) * np.linalg.norm(v, axis=1))
+        out[:, k] = np.degrees(np.arccos(np.clip(c, -1, 1)))
+    return out
+
+
+def shape_measures(mesh):
+    """Smallest angle and share of triangles whose smallest angle is under 30 degrees."""
+    mn = triangle_angles(mesh).min(axis=1)
+    return {"min_angle": float(mn.min()), "share_below_30": float((mn < 30).mean())}
