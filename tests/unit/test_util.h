@@ -41,7 +41,7 @@ inline MeshSnapshot Snapshot(TMesh& m) {
   for (auto& f : m.face) {
     std::vector<long> r{long(f.Flags())};
     for (int z = 0; z < 3; ++z) {
-      r.push_back(long(vcg::tri::Index(m, f.cV(z))));
+      r.push_back(f.cV(z) ? long(vcg::tri::Index(m, f.cV(z))) : -1);
       r.push_back(fidx(f.cFFp(z)));
       r.push_back(f.cFFi(z));
       r.push_back(fidx(f.cVFp(z)));

@@ -362,6 +362,18 @@ class MeshEditor {
     RelinkVF(v);
     RelinkVF(a);
     RelinkVF(b);
+    // vcg's Allocator fixes the pointers of live elements only when a later split reallocates
+    // the vertex or face vector: the dead ones' would dangle. Clear them once the live VF
+    // lists no longer pass through them (the journal above restores them by index).
+    u->VFp() = nullptr;
+    u->VFi() = -1;
+    for (FaceType* dead : {f0, f1})
+      for (int z = 0; z < 3; ++z) {
+        dead->V(z) = nullptr;
+        dead->FFp(z) = nullptr;
+        dead->VFp(z) = nullptr;
+        dead->VFi(z) = -1;
+      }
     Result geo = CheckGeometry(changed, ref, refArea);
     if (!geo) {
       RollbackTo(cp);
