@@ -626,19 +626,40 @@ def check_invariants(mesh):
 def closest_point_distances(points, mesh, candidates=12):
     """Distance from each point to the surface of mesh: exact point-triangle distances
     (Ericson, Real-Time Collision Detection, 5.1.5) to the `candidates` triangles whose
-    centroids are nearest (scipy's cKDTree). On meshes of even triangles the closest one is
-    among them; otherwise the result can only be too large, never too small."""
+    centroids are nearest (scipy's cKDTree). That alone is an upper bound (on uneven meshes the
+    closest triangle can have a farther centroid), so the largest values are then made exact:
+    the closest triangle of p has its centroid within d + R of p (d: any triangle's distance,
+    R: the largest centroid-to-corner distance), and all those are checked, until no point
+    left with an upper bound exceeds the largest exact value. The maximum is therefore exact;
+    smaller values may stay upper bounds."""
     from scipy.spatial import cKDTree
     tri = mesh.vertices[mesh.faces]
-    tree = cKDTree(tri.mean(axis=1))
+    cen = tri.mean(axis=1)
+    tree = cKDTree(cen)
     k = min(candidates, len(tri))
     chunk = 50000  # bounded memory: (chunk, k, 3) arrays
-    return np.concatenate([_closest_in(points[i:i + chunk], tri, tree, k) for i in range(0, len(points), chunk)])
+    d = np.concatenate([_closest_in(points[i:i + chunk], tri, tree.query(points[i:i + chunk], k=k)[1])
+                        for i in range(0, len(points), chunk)])
+    reach = float(np.linalg.norm(tri - cen[:, None, :], axis=2).max())
+    exact = np.zeros(len(points), bool)
+    best = 0.0
+    while True:
+        todo = np.nonzero(~exact & (d > best))[0]
+        if len(todo) == 0:
+            return d
+        todo = todo[np.argsort(-d[todo])][:256]
+        for i in todo:
+            near = tree.query_ball_point(points[i], d[i] + reach)
+            if near:
+                d[i] = min(d[i], _closest_in(points[i:i + 1], tri, np.array([near]))[0])
+            exact[i] = True
+        best = max(best, float(d[todo].max()))
 
 
-def _closest_in(points, tri, tree, k):
-    _, idx = tree.query(points, k=k)
-    idx = idx.reshape(len(points), k)
+def _closest_in(points, tri, idx):
+    """Distance from each point to the nearest of its candidate triangles idx (n, k)."""
+    idx = idx.reshape(len(points), -1)
+    k = idx.shape[1]
     p = np.repeat(points[:, None, :], k, axis=1)
     a, b, c = tri[idx, 0], tri[idx, 1], tri[idx, 2]
     ab, ac, ap = b - a, c - a, p - a
