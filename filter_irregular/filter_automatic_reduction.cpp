@@ -50,7 +50,8 @@ void FilterIrregularPlugin::initAutomaticReductionParameters(MeshModel& mm, Rich
                         "followed by local sweeps (the global result is kept only if it does not lower the "
                         "smallest angle). Every edit is relaxed locally as it is made."));
   par.addParam(RichFloat("timeLimit", 60.f, "Time limit (seconds)",
-                         "Editing stops after this long; what was done is kept and relaxed."));
+                         "Editing stops after this long; what was done is kept, relaxed and checked against the "
+                         "Hausdorff budget. 0: no limit (the result then does not depend on the machine's speed)."));
 }
 
 namespace {
@@ -132,7 +133,7 @@ bool FilterIrregularPlugin::automaticReduction(MeshModel& mm, const RichParamete
   opt.maxTravel = std::max(1, par.getInt("maxTravel"));
   opt.glideTravel = 4 * opt.maxTravel;
   opt.finalRelax = par.getEnum("relaxation") == 1 ? irr::RelaxMode::Global : irr::RelaxMode::Local;
-  opt.timeLimitSeconds = std::max(0.f, par.getFloat("timeLimit"));
+  if (par.getFloat("timeLimit") > 0) opt.timeLimitSeconds = par.getFloat("timeLimit");  // 0: no limit
   opt.frozen = FrozenFromSelection(m, protect);
   if (cb) opt.progress = [cb](int pct, const char* what) { return cb(pct, what); };
   irr::AutomaticReduction<CMeshO> reduction(m, original, opt);

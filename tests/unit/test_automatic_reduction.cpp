@@ -190,7 +190,7 @@ TEST(AutomaticReduction, TimeLimitStopsEditingButKeepsAValidMesh) {
   std::unique_ptr<SurfaceProjector> input;
   if (!RemeshedCorpus(m, "bunny00.off", 3000, &input)) GTEST_SKIP() << "corpus mesh missing";
   ReductionOptions opt;
-  opt.timeLimitSeconds = 0;
+  opt.timeLimitSeconds = 1e-9;
   AutomaticReduction<TMesh> ar(m, *input, opt);
   ReductionReport r = ar.Run();
   ASSERT_TRUE(r) << r.result.reason;

@@ -25,6 +25,7 @@
 #include <algorithm>
 #include <chrono>
 #include <functional>
+#include <limits>
 #include <map>
 #include <queue>
 #include <string>
@@ -62,7 +63,9 @@ struct ReductionOptions {
   double sharpEdgeDeg = 25;             ///< input edges sharper than this are sampled for the Hausdorff check
   double hausdorffSamplesPerEdge = 0;   ///< input samples per edited edge length for the Hausdorff check besides
                                         ///< its sharp edges (0: sharp edges only); 2 is stricter and ~3x slower
-  double timeLimitSeconds = 60;         ///< stop editing (keeping what was done) after this long
+  double timeLimitSeconds = std::numeric_limits<double>::infinity();  ///< stop editing (keeping what was
+                                        ///< done) after this long; the default: no limit (results then do
+                                        ///< not depend on the machine's speed)
   std::function<bool(int, const char*)> progress;  ///< (percent, stage); returning false interrupts and rolls back
 };
 
