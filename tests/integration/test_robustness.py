@@ -4,6 +4,7 @@ valid but unusual input (boundaries, several components) is handled."""
 import numpy as np
 import pytest
 
+import mlpy
 from mlserver import Enum, Filter, check_invariants, run, select_vertices
 
 LEAD = ["Lower valence", "Higher valence", "Lower index", "Higher index"]
@@ -32,6 +33,12 @@ def all_filters():
         "generate": Filter("Irregular Vertices: Generate",
                            kind=Enum(1, ["Triple from a v5 or v7", "Quadruple from a regular vertex"]),
                            direction=0, spacing=1, relax=True),
+        # mlpy's Filter writes the RichAbsPerc parameter; run() only needs .xml()
+        "automatic": mlpy.Filter("Irregular Vertices: Automatic Reduction", remeshEdgeLength=mlpy.AbsPerc(0.0),
+                                 targetCount=0, hausdorffBudget=0.5, minAngle=30.0, maxTravel=12,
+                                 protect=mlpy.Enum(0, ["Nothing", "Selected region untouched",
+                                                       "Selected irregular vertices kept"]),
+                                 relaxation=mlpy.Enum(0, ["Local", "Global"]), timeLimit=0.0),
     }
 
 
