@@ -4,11 +4,11 @@ import sys
 import pytest
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import mlserver  # noqa: E402
+import mlpy  # noqa: E402
 
 
 def pytest_collection_modifyitems(config, items):
-    if not mlserver.have_meshlab():
+    if not mlpy.have_meshlab():
         skip = pytest.mark.skip(reason="no staged meshlabserver (run scripts/build.sh) or no xvfb-run")
         for item in items:
             item.add_marker(skip)
@@ -17,7 +17,7 @@ def pytest_collection_modifyitems(config, items):
 @pytest.fixture
 def corpus():
     def path(name):
-        p = os.path.join(mlserver.DATA, name)
+        p = os.path.join(mlpy.DATA, name)
         if not os.path.exists(p):
             pytest.skip("corpus mesh %s missing (run scripts/setup.sh)" % name)
         return p

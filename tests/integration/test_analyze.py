@@ -6,7 +6,7 @@ import re
 import numpy as np
 import pytest
 
-from mlserver import (EXAMPLES, Enum, Filter, boundary_mask, check_invariants, euler_characteristic,
+from mlpy import (EXAMPLES, Enum, Filter, boundary_mask, check_invariants, euler_characteristic,
                       irregular_mask, read_off, referenced_mask, run, selected_mask, valences)
 
 SELECT = ["None", "All irregular", "Only valence"]
@@ -25,7 +25,7 @@ def analyze(select=1, valence=5, colorize=True):
 @pytest.mark.parametrize("name,genus,loops", [("bunny00.off", 0, 0), ("elephant.off", 3, 0),
                                               ("knot1.off", 1, 0), ("mesh_with_border.off", None, None)])
 def test_example_script_colours_quality_selection(corpus, name, genus, loops):
-    r = run(corpus(name), os.path.join(EXAMPLES, "analyze.mlx"))
+    r = run(corpus(name), filters=os.path.join(EXAMPLES, "analyze.mlx"))
     assert r.ok, r.log
     m = r.mesh
     val = valences(m)
@@ -56,21 +56,21 @@ def test_example_script_colours_quality_selection(corpus, name, genus, loops):
 
 
 def test_bunny_numbers(corpus):
-    r = run(corpus("bunny00.off"), [analyze()])
+    r = run(corpus("bunny00.off"), filters=[analyze()])
     assert r.ok, r.log
     assert "Irregular vertices: 19715 of 37706" in r.log
     assert "v4:1080 v5:8951 v6:17991 v7:8340 v8:1276 v9:65 v10:3" in r.log
 
 
 def test_select_only_valence(corpus):
-    r = run(corpus("knot1.off"), [analyze(select=2, valence=7)])
+    r = run(corpus("knot1.off"), filters=[analyze(select=2, valence=7)])
     assert r.ok, r.log
     val = valences(r.mesh)
     assert np.array_equal(selected_mask(r.mesh), val == 7)
 
 
 def test_boundary_vertices_are_regular_at_valence_four(corpus):
-    r = run(corpus("mesh_with_border.off"), [analyze()])
+    r = run(corpus("mesh_with_border.off"), filters=[analyze()])
     assert r.ok, r.log
     m = r.mesh
     bnd = boundary_mask(m)
@@ -91,16 +91,16 @@ def test_refuses_non_manifold_edge(tmp_path):
     # three triangles sharing the edge (0, 1)
     p = str(tmp_path / "nm.off")
     write_off(p, [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1)], [(0, 1, 2), (1, 0, 3), (0, 1, 4)])
-    r = run(p, [analyze()])
+    r = run(p, filters=[analyze()])
     assert r.returncode == 255
     assert "Repair non Manifold Edges" in r.log
-    assert r.mesh is None
+    assert not os.path.exists(r.output_path)
 
 
 def test_refuses_polygonal_mesh(tmp_path):
     p = str(tmp_path / "quad.off")
     write_off(p, [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)],
               [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)])
-    r = run(p, [analyze()])
+    r = run(p, filters=[analyze()])
     assert r.returncode == 255, r.log
     assert "Turn into a Pure-Triangular mesh" in r.log

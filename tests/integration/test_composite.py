@@ -5,7 +5,7 @@ import os
 import numpy as np
 import pytest
 
-from mlserver import (EXAMPLES, Enum, Filter, check_invariants, irregular_mask, read_off, run,
+from mlpy import (EXAMPLES, Enum, Filter, Point3f, check_invariants, irregular_mask, read_off, run,
                       select_vertices, selected_mask, valences)
 
 LEAD = ["Lower valence", "Higher valence", "Lower index", "Higher index"]
@@ -17,28 +17,8 @@ def hist(m):
 
 
 def move_pair(direction=0, steps=5, toward=False, point=(0.0, 0.0, 0.0), relax=True):
-    f = Filter("Irregular Vertices: Move Pair", lead=Enum(0, LEAD), direction=direction, steps=steps,
-               towardPoint=toward)
-    f.params["point"] = point
-    f.params["relax"] = relax
-    return f
-
-
-# Patch the XML writer for RichPoint3f (a tuple parameter).
-_xml = Filter.xml
-
-
-def _xml_with_point(self):
-    out = _xml(Filter(self.name, **{k: v for k, v in self.params.items() if not isinstance(v, tuple)}))
-    for k, v in self.params.items():
-        if isinstance(v, tuple):
-            out = out.replace(' <Param type="RichBool" name="relax"',
-                              ' <Param type="RichPoint3f" name="%s" x="%r" y="%r" z="%r"/>\n  '
-                              '<Param type="RichBool" name="relax"' % ((k,) + tuple(v)))
-    return out
-
-
-Filter.xml = _xml_with_point
+    return Filter("Irregular Vertices: Move Pair", lead=Enum(0, LEAD), direction=direction, steps=steps,
+                  towardPoint=toward, point=Point3f(*point), relax=relax)
 
 
 def preserved_irregular(src, out):
@@ -54,7 +34,7 @@ def preserved_irregular(src, out):
 
 def test_reduce_example(corpus):
     src = read_off(corpus("bunny00.off"))
-    r = run(corpus("bunny00.off"), os.path.join(EXAMPLES, "reduce.mlx"))
+    r = run(corpus("bunny00.off"), filters=os.path.join(EXAMPLES, "reduce.mlx"))
     assert r.ok, r.log
     before, after = hist(src), hist(r.mesh)
     # most vertices of valence other than 5 and 7 are gone
@@ -67,7 +47,7 @@ def test_reduce_example(corpus):
 
 def test_aggregate_example_restores_histogram(corpus):
     src = read_off(corpus("bunny00.off"))
-    r = run(corpus("bunny00.off"), os.path.join(EXAMPLES, "aggregate.mlx"))
+    r = run(corpus("bunny00.off"), filters=os.path.join(EXAMPLES, "aggregate.mlx"))
     assert r.ok, r.log
     assert np.array_equal(hist(r.mesh), hist(src))
     sel = selected_mask(r.mesh)
@@ -77,7 +57,7 @@ def test_aggregate_example_restores_histogram(corpus):
 
 def test_move_pair_example(corpus):
     src = read_off(corpus("knot1.off"))
-    r = run(corpus("knot1.off"), os.path.join(EXAMPLES, "move_pair.mlx"))
+    r = run(corpus("knot1.off"), filters=os.path.join(EXAMPLES, "move_pair.mlx"))
     assert r.ok, r.log
     m = r.mesh
     assert np.array_equal(hist(m), hist(src))
@@ -92,7 +72,7 @@ def test_move_pair_example(corpus):
 def test_long_move_touches_nothing_far_away(corpus, steps):
     src = read_off(corpus("knot1.off"))
     # without relaxation nothing but the path's own vertices can move
-    r = run(corpus("knot1.off"), [select_vertices([47, 3186]), move_pair(0, steps, relax=False)])
+    r = run(corpus("knot1.off"), filters=[select_vertices([47, 3186]), move_pair(0, steps, relax=False)])
     assert r.ok, r.log
     m = r.mesh
     assert "%d atomic steps" % steps in r.log
@@ -114,7 +94,7 @@ def test_move_toward_point(corpus):
     src = read_off(corpus("knot1.off"))
     start = (src.vertices[47] + src.vertices[3186]) / 2
     target = src.vertices[1500]
-    r = run(corpus("knot1.off"), [select_vertices([47, 3186]), move_pair(toward=True, point=tuple(map(float, target)))])
+    r = run(corpus("knot1.off"), filters=[select_vertices([47, 3186]), move_pair(toward=True, point=tuple(map(float, target)))])
     if not r.ok:
         assert "Irregular Vertices: refused" in r.log
         return
@@ -127,7 +107,7 @@ def test_move_toward_point(corpus):
 @pytest.mark.parametrize("script", ["cancel_triple.mlx", "cancel_quadruple.mlx"])
 def test_generate_then_cancel_examples(corpus, script):
     src = read_off(corpus("knot1.off"))
-    r = run(corpus("knot1.off"), os.path.join(EXAMPLES, script))
+    r = run(corpus("knot1.off"), filters=os.path.join(EXAMPLES, script))
     assert r.ok, r.log
     assert np.array_equal(hist(r.mesh), hist(src))
     check_invariants(r.mesh)
@@ -135,7 +115,7 @@ def test_generate_then_cancel_examples(corpus, script):
 
 def test_generate_example(corpus):
     src = read_off(corpus("knot1.off"))
-    r = run(corpus("knot1.off"), os.path.join(EXAMPLES, "generate.mlx"))
+    r = run(corpus("knot1.off"), filters=os.path.join(EXAMPLES, "generate.mlx"))
     assert r.ok, r.log
     h0, h1 = hist(src), hist(r.mesh)
     assert h1[5] == h0[5] + 2 and h1[7] == h0[7] + 2
@@ -148,15 +128,15 @@ def test_refusals(corpus):
     src = read_off(corpus("knot1.off"))
     val = valences(src)
     # a 5-7 pair cannot cancel (Theorem 5.5)
-    r = run(corpus("knot1.off"), [select_vertices([47, 3186]), Filter("Irregular Vertices: Cancel Triple", relax=True)])
-    assert r.returncode == 255 and "Theorem 5.5" in r.log and r.mesh is None
+    r = run(corpus("knot1.off"), filters=[select_vertices([47, 3186]), Filter("Irregular Vertices: Cancel Triple", relax=True)])
+    assert r.returncode == 255 and "Theorem 5.5" in r.log and not os.path.exists(r.output_path)
     # one irregular vertex cannot move alone (Theorem 5.1)
-    r = run(corpus("knot1.off"), [select_vertices([47]), move_pair()])
+    r = run(corpus("knot1.off"), filters=[select_vertices([47]), move_pair()])
     assert r.returncode == 255 and "Theorem 5.1" in r.log
     # aggregation of regular vertices
     regular = [int(i) for i in np.nonzero(val == 6)[0][:2]]
-    r = run(corpus("knot1.off"), [select_vertices(regular), Filter("Irregular Vertices: Aggregate", relax=True)])
+    r = run(corpus("knot1.off"), filters=[select_vertices(regular), Filter("Irregular Vertices: Aggregate", relax=True)])
     assert r.returncode == 255 and "aggregation merges only" in r.log
     # wrong count
-    r = run(corpus("knot1.off"), [select_vertices([47, 3186, 5, 6, 7]), Filter("Irregular Vertices: Cancel Quadruple", relax=True)])
+    r = run(corpus("knot1.off"), filters=[select_vertices([47, 3186, 5, 6, 7]), Filter("Irregular Vertices: Cancel Quadruple", relax=True)])
     assert r.returncode == 255 and "needs exactly 4" in r.log

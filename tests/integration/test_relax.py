@@ -3,7 +3,7 @@ import os
 
 import numpy as np
 
-from mlserver import EXAMPLES, Enum, Filter, check_invariants, read_off, run
+from mlpy import EXAMPLES, Enum, Filter, check_invariants, read_off, run
 
 
 def min_angles(m):
@@ -18,7 +18,7 @@ def min_angles(m):
 
 def test_example_global_relaxation_improves_and_keeps_connectivity(corpus):
     src = read_off(corpus("bunny00.off"))
-    r = run(corpus("bunny00.off"), os.path.join(EXAMPLES, "relax.mlx"))
+    r = run(corpus("bunny00.off"), filters=os.path.join(EXAMPLES, "relax.mlx"))
     assert r.ok, r.log
     assert np.array_equal(r.mesh.faces, src.faces)
     before, after = min_angles(src), min_angles(r.mesh)
@@ -34,7 +34,7 @@ def test_local_relaxation_of_selection_moves_only_selection(corpus):
            Filter("Irregular Vertices: Relax", mode=Enum(0, ["Local", "Global"]), iterations=5,
                   region=Enum(1, ["All", "Selection", "Around irregular vertices"]), reproject=True,
                   featureAngle=60.0)]
-    r = run(corpus("knot1.off"), flt)
+    r = run(corpus("knot1.off"), filters=flt)
     assert r.ok, r.log
     moved = np.linalg.norm(r.mesh.vertices - src.vertices, axis=1) > 1e-7
     assert moved[:500].any()

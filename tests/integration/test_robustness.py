@@ -1,11 +1,12 @@
 """Integration: bad input through every filter. Each is refused with a message naming the
 problem (and the MeshLab filter that fixes it), meshlabserver exits 255, nothing is written;
 valid but unusual input (boundaries, several components) is handled."""
+import os
+
 import numpy as np
 import pytest
 
-import mlpy
-from mlserver import Enum, Filter, check_invariants, run, select_vertices
+from mlpy import AbsPerc, Enum, Filter, Point3f, check_invariants, run, select_vertices
 
 LEAD = ["Lower valence", "Higher valence", "Lower index", "Higher index"]
 OPS = ["5-7 pair move", "v5/v7 move with 5-7 pair generation",
@@ -14,9 +15,6 @@ OPS = ["5-7 pair move", "v5/v7 move with 5-7 pair generation",
 
 
 def all_filters():
-    move = Filter("Irregular Vertices: Move Pair", lead=Enum(0, LEAD), direction=0, steps=1, towardPoint=False)
-    move.params["point"] = (0.0, 0.0, 0.0)
-    move.params["relax"] = True
     return {
         "analyze": Filter("Irregular Vertices: Analyze", select=Enum(1, ["None", "All irregular", "Only valence"]),
                           valence=5, colorize=True),
@@ -27,18 +25,17 @@ def all_filters():
         "reduce": Filter("Irregular Vertices: Reduce to Valence 5 and 7",
                          scope=Enum(0, ["All irregular vertices", "Selected vertices"]), relax=True),
         "aggregate": Filter("Irregular Vertices: Aggregate", relax=True),
-        "move": move,
+        "move": Filter("Irregular Vertices: Move Pair", lead=Enum(0, LEAD), direction=0, steps=1, towardPoint=False,
+                       point=Point3f(0.0, 0.0, 0.0), relax=True),
         "triple": Filter("Irregular Vertices: Cancel Triple", relax=True),
         "quadruple": Filter("Irregular Vertices: Cancel Quadruple", relax=True),
         "generate": Filter("Irregular Vertices: Generate",
                            kind=Enum(1, ["Triple from a v5 or v7", "Quadruple from a regular vertex"]),
                            direction=0, spacing=1, relax=True),
-        # mlpy's Filter writes the RichAbsPerc parameter; run() only needs .xml()
-        "automatic": mlpy.Filter("Irregular Vertices: Automatic Reduction", remeshEdgeLength=mlpy.AbsPerc(0.0),
-                                 targetCount=0, hausdorffBudget=0.5, minAngle=30.0, maxTravel=12,
-                                 protect=mlpy.Enum(0, ["Nothing", "Selected region untouched",
-                                                       "Selected irregular vertices kept"]),
-                                 relaxation=mlpy.Enum(0, ["Local", "Global"]), timeLimit=0.0),
+        "automatic": Filter("Irregular Vertices: Automatic Reduction", remeshEdgeLength=AbsPerc(0.0), targetCount=0,
+                            hausdorffBudget=0.5, minAngle=30.0, maxTravel=12,
+                            protect=Enum(0, ["Nothing", "Selected region untouched", "Selected irregular vertices kept"]),
+                            relaxation=Enum(0, ["Local", "Global"]), timeLimit=0.0),
     }
 
 
@@ -86,17 +83,17 @@ def bad_meshes(tmp_path):
 def test_bad_input_is_refused_by_every_filter(tmp_path, filter_key):
     flt = all_filters()[filter_key]
     for name, (path, fix) in bad_meshes(tmp_path).items():
-        r = run(path, [select_vertices([0]), flt], out_dir=str(tmp_path / filter_key))
+        r = run(path, filters=[select_vertices([0]), flt])
         assert r.returncode == 255, (name, r.log[-2000:])
         assert "Irregular Vertices: refused" in r.log, (name, r.log[-2000:])
         if fix:
             assert fix in r.log, (name, fix)
-        assert r.mesh is None
+        assert not os.path.exists(r.output_path)
 
 
 @pytest.mark.parametrize("filter_key", ["atomic", "move", "triple", "quadruple", "generate", "aggregate"])
 def test_empty_selection_is_refused(corpus, filter_key):
-    r = run(corpus("knot1.off"), [Filter("Conditional Vertex Selection", condSelect="(vi < 0)"),
+    r = run(corpus("knot1.off"), filters=[Filter("Conditional Vertex Selection", condSelect="(vi < 0)"),
                                   all_filters()[filter_key]])
     assert r.returncode == 255
     assert "Irregular Vertices: refused" in r.log
@@ -104,7 +101,7 @@ def test_empty_selection_is_refused(corpus, filter_key):
 
 def test_boundary_vertex_is_refused(corpus):
     # vertex 0 of mesh_with_border lies on the border
-    r = run(corpus("mesh_with_border.off"), [select_vertices([0]), all_filters()["generate"]])
+    r = run(corpus("mesh_with_border.off"), filters=[select_vertices([0]), all_filters()["generate"]])
     assert r.returncode == 255
     assert "boundary" in r.log
 
@@ -112,7 +109,7 @@ def test_boundary_vertex_is_refused(corpus):
 @pytest.mark.parametrize("name", ["head.off", "blobby_3cc.off", "mesh_with_border.off"])
 def test_boundaries_and_components_are_handled(corpus, name):
     for key in ["analyze", "relax", "reduce"]:
-        r = run(corpus(name), [all_filters()[key]])
+        r = run(corpus(name), filters=[all_filters()[key]])
         if key == "reduce" and r.returncode == 255:
             assert "nothing to reduce" in r.log or "no interior vertex" in r.log.lower() or "No vertex" in r.log
             continue
@@ -128,7 +125,7 @@ def test_real_defective_models_do_not_crash(corpus):
         except BaseException:
             continue
         for key in ["analyze", "relax", "reduce"]:
-            r = run(path, [all_filters()[key]])
+            r = run(path, filters=[all_filters()[key]])
             assert r.returncode in (0, 255), (name, key, r.returncode, r.log[-1500:])
             if r.returncode == 255:
                 assert "Irregular Vertices: refused" in r.log
