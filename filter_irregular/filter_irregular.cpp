@@ -121,8 +121,10 @@ QString FilterIrregularPlugin::filterInfo(FilterIDType id) const {
              "straight on until they cancel (sec. 7.1-7.2), and stretched 5-7 pairs split into two adjacent "
              "pairs that are cancelled in turn. Every edit is relaxed locally and undone if it leaves a triangle "
              "under the minimum angle or the input surface by more than the Hausdorff budget; the whole mesh is "
-             "relaxed at the end. Optionally remeshes isotropically first. Deterministic. Logs counts by "
-             "valence, triangle quality, Hausdorff distance and time.";
+             "relaxed at the end. The budget bounds the result: it is measured at the end, and a run that "
+             "overshoots is redone with stricter checks (at worst every edit is undone). Optionally remeshes "
+             "isotropically first. Deterministic. Logs counts by valence, triangle quality, Hausdorff distance "
+             "and time.";
   }
   return "";
 }
