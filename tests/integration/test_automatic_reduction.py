@@ -9,8 +9,9 @@ import numpy as np
 import pytest
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from mlpy import (EXAMPLES, AbsPerc, Enum, Filter, check_invariants, hausdorff, irregular_mask,  # noqa: E402
-                  read_mesh, run, select_vertices, selected_mask, shape_measures, valences)
+from mlpy import (EXAMPLES, AbsPerc, Enum, Filter, check_invariants, gaussian_curvature_near,  # noqa: E402
+                  hausdorff, irregular_mask, read_mesh, run, select_vertices, selected_mask, shape_measures,
+                  valences)
 
 NAME = "Irregular Vertices: Automatic Reduction"
 PROTECT = ["Nothing", "Selected region untouched", "Selected irregular vertices kept"]
@@ -56,6 +57,14 @@ def test_example_on_the_bunny_meets_the_paper(corpus, tmp_path):
     assert hausdorff_percent(src, out) <= 0.5
     assert shape_measures(m)["share_below_30"] <= 0.01
     assert "Automatic reduction:" in r.log
+    # The irregular vertices left are where the surface needs them: v5 on caps, v7 in saddles
+    # (the sign of the input's Gaussian curvature within 4% of the diagonal around them; on
+    # random vertices either sign is about as likely). Measured: 90% and 89%.
+    src_mesh = read_mesh(src)
+    k = gaussian_curvature_near(src_mesh, m.vertices[irregular], 0.04 * diagonal(src_mesh))
+    v = valences(m)[irregular]
+    assert (k[v == 5] > 0).mean() >= 0.75, (k[v == 5] > 0).mean()
+    assert (k[v == 7] < 0).mean() >= 0.75, (k[v == 7] < 0).mean()
 
 
 def test_budget_is_respected_and_the_run_is_deterministic(corpus, tmp_path):

@@ -32,6 +32,7 @@ __all__ = [
     "is_edge_manifold", "is_consistently_oriented", "irregular_mask", "gauss_bonnet_sum",
     "selected_mask", "deleted_mask", "check_invariants",
     "closest_point_distances", "surface_samples", "hausdorff", "triangle_angles", "shape_measures",
+    "gaussian_curvature_near",
 ]
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -726,3 +727,22 @@ def shape_measures(mesh):
     """Smallest angle and share of triangles whose smallest angle is under 30 degrees."""
     mn = triangle_angles(mesh).min(axis=1)
     return {"min_angle": float(mn.min()), "share_below_30": float((mn < 30).mean())}
+
+
+def gaussian_curvature_near(mesh, points, radius):
+    """Discrete Gaussian curvature of mesh (angle defect over vertex area) averaged over the
+    vertices within radius of each point: the sign tells a cap (> 0) from a saddle (< 0)."""
+    from scipy.spatial import cKDTree
+    v, f = mesh.vertices, mesh.faces
+    defect = np.full(len(v), 2 * np.pi)
+    np.subtract.at(defect, f.ravel(), np.radians(triangle_angles(mesh)).ravel())
+    p = v[f]
+    area = 0.5 * np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1)
+    vertex_area = np.zeros(len(v))
+    np.add.at(vertex_area, f.ravel(), np.repeat(area / 3, 3))
+    tree = cKDTree(v)
+    out = []
+    for q in np.atleast_2d(points):
+        idx = tree.query_ball_point(q, radius)
+        out.append(defect[idx].sum() / max(vertex_area[idx].sum(), 1e-300) if idx else 0.0)
+    return np.array(out)
