@@ -103,10 +103,10 @@ class AutomaticReduction {
       : m_(m), original_(original), opt_(std::move(opt)), ed_(m), comp_(ed_, &original, Quiet()), ops_(comp_.atomic()) {
     // The per-edit check samples the input side on its sharp edges (and, if asked, at
     // hausdorffSamplesPerEdge points per edge elsewhere): between samples the true distance
-    // can be higher, so a tenth of the budget is kept back. The final symmetric distance is
-    // measured exactly by the caller (quality.h) and reported.
+    // can be higher, so a tenth of the budget is kept back; Run() measures the result and
+    // redoes the run if it still overshoots.
     budget_ = 0.9 * opt_.hausdorffBudgetPercent / 100.0 * double(original.Diagonal());
-    BuildInputSamples(opt_.hausdorffSamplesPerEdge);
+    BuildInputSamples(samplesPerEdge_ = opt_.hausdorffSamplesPerEdge);
   }
 
   /// Runs the reduction. Postcondition on success: the symmetric Hausdorff distance of the
@@ -149,7 +149,7 @@ class AutomaticReduction {
       // use most of the budget, and a much lower one would forbid every edit there).
       ed_.RollbackTo(start);
       budget_ *= std::max(0.5, std::min(0.95, kVerifyMargin * opt_.hausdorffBudgetPercent / r.hausdorffPercent));
-      if (opt_.hausdorffSamplesPerEdge < 2) BuildInputSamples(opt_.hausdorffSamplesPerEdge = 2);
+      if (samplesPerEdge_ < 2) BuildInputSamples(samplesPerEdge_ = 2);
       epoch_ = 0;
       editedAt_.clear();
       failedAt_.clear();
@@ -883,7 +883,8 @@ class AutomaticReduction {
   Editor ed_;
   CompositeOperations<MeshType> comp_;
   AtomicOperations<MeshType>& ops_;
-  double budget_ = 0;
+  double budget_ = 0;          ///< per-edit Hausdorff budget (absolute), tightened by retries
+  double samplesPerEdge_ = 0;  ///< input samples per edge length besides sharp edges, raised by retries
   SampleGrid originalSamples_;  ///< the input's vertices and face centroids, for DeviationAround()
   bool globalKept_ = true;
   bool sweepsKept_ = true;
