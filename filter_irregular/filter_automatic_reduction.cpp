@@ -176,6 +176,6 @@ bool FilterIrregularPlugin::automaticReduction(MeshModel& mm, const RichParamete
         "finer first.");
   Log("Time: %.2f s (reduction %.2f s)", seconds, rep.seconds);
   // Keep a protected selection; otherwise select what remains irregular.
-  paintAndLog(mm, true, protect == 0 ? 1 : 0, 0, true);
+  paintAndLog(mm, par.getBool("colorize"), protect == 0 ? 1 : 0, 0, true, par.getBool("colorize"));
   return true;
 }

@@ -235,6 +235,12 @@ void FilterIrregularPlugin::initParameterSet(QAction* a, MeshModel& m, RichParam
       break;
     default: break;
   }
+  // Every editing filter, last: the legend, or the user's own colours and quality kept.
+  if (ID(a) != FP_ANALYZE && ID(a) != FP_RELAX)
+    par.addParam(RichBool("colorize", true, "Colour by valence",
+                          "Paint the valence legend (v5 blue, v7 orange, v8 red, ...) and write the valence into "
+                          "vertex quality. Off: the vertex colours and quality you had are kept (a vertex an "
+                          "edit creates takes those of the vertex it was split from)."));
 }
 
 bool FilterIrregularPlugin::refuse(const QString& why) {
@@ -244,11 +250,11 @@ bool FilterIrregularPlugin::refuse(const QString& why) {
 }
 
 void FilterIrregularPlugin::paintAndLog(MeshModel& mm, bool colorize, int selectMode, int selectValence,
-                                        bool logSummary) {
+                                        bool logSummary, bool writeQuality) {
   CMeshO& m = mm.cm;
   irr::ValenceField<CMeshO> vf = irr::ComputeValences(m);
-  mm.updateDataMask(MeshModel::MM_VERTQUALITY | (colorize ? MeshModel::MM_VERTCOLOR : 0));
-  irr::PaintValences(m, vf, colorize);
+  mm.updateDataMask((writeQuality ? MeshModel::MM_VERTQUALITY : 0) | (colorize ? MeshModel::MM_VERTCOLOR : 0));
+  irr::PaintValences(m, vf, colorize, writeQuality);
   const int selected = irr::SelectByValence(m, vf, irr::IrregularSelection(selectMode), selectValence);
   m.svn = selected;
   if (!logSummary) return;
@@ -402,7 +408,7 @@ bool FilterIrregularPlugin::atomic(MeshModel& mm, const RichParameterList& par) 
   FinishEdit(m);
   Log("Atomic operation: %s", out.description.c_str());
   if (!changes.isEmpty()) Log("Valence after, by vertex index before compaction:%s", qUtf8Printable(changes));
-  paintAndLog(mm, true, 0, 0, true);
+  paintAndLog(mm, par.getBool("colorize"), 0, 0, true, par.getBool("colorize"));
   return true;
 }
 
@@ -572,7 +578,7 @@ bool FilterIrregularPlugin::composite(QAction* a, MeshModel& mm, const RichParam
   FinishEdit(m);
   Log("%s: %d atomic steps", qUtf8Printable(what), out.atomicSteps);
   if (!out.log.empty() && out.atomicSteps <= 50) Log("Steps:\n%s", out.log.c_str());
-  paintAndLog(mm, true, 0, 0, true);
+  paintAndLog(mm, par.getBool("colorize"), 0, 0, true, par.getBool("colorize"));
   return true;
 }
 

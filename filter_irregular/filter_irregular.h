@@ -39,5 +39,8 @@ class FilterIrregularPlugin : public QObject, public MeshFilterInterface {
   /// prints the log but not the error message). Returns false for `return refuse(...)`.
   bool refuse(const QString& why);
   /// Recolours and writes valence to quality; logs the summary.
-  void paintAndLog(MeshModel& mm, bool colorize, int selectMode, int selectValence, bool logSummary);
+  /// Legend colours (colorize) and valence in vertex quality (writeQuality), the selection
+  /// (selectMode: 0 keeps it), and the topology summary in the log.
+  void paintAndLog(MeshModel& mm, bool colorize, int selectMode, int selectValence, bool logSummary,
+                   bool writeQuality = true);
 };

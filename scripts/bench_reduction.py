@@ -42,7 +42,7 @@ def ours(diag, length, budget):
     return Filter("Irregular Vertices: Automatic Reduction", remeshEdgeLength=AbsPerc(length, 0.0, diag),
                   targetCount=0, hausdorffBudget=budget, minAngle=30.0, maxTravel=12,
                   protect=Enum(0, ["Nothing", "Selected region untouched", "Selected irregular vertices kept"]),
-                  relaxation=Enum(0, ["Local", "Global"]), timeLimit=0.0)
+                  relaxation=Enum(0, ["Local", "Global"]), timeLimit=0.0, colorize=True)
 
 
 def measure(src, path, seconds):

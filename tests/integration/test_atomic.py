@@ -11,8 +11,9 @@ OPS = ["5-7 pair move", "v5/v7 move with 5-7 pair generation",
        "5-5-7-7 generation by split", "5-5-7-7 removal", "Edge flip", "Edge collapse", "Vertex split"]
 
 
-def atomic(op, direction=0, relax=True):
-    return Filter("Irregular Vertices: Atomic Operation", operation=Enum(op, OPS), direction=direction, relax=relax)
+def atomic(op, direction=0, relax=True, colorize=True):
+    return Filter("Irregular Vertices: Atomic Operation", operation=Enum(op, OPS), direction=direction, relax=relax,
+                  colorize=colorize)
 
 
 def hist(val):

@@ -18,11 +18,11 @@ PROTECT = ["Nothing", "Selected region untouched", "Selected irregular vertices 
 
 
 def reduction(diag, remesh=0.0, target=0, budget=0.5, min_angle=30.0, travel=12, protect=0, relaxation=0,
-              time_limit=0.0):
+              time_limit=0.0, colorize=True):
     """The filter with every parameter, in declaration order (meshlabserver needs them all)."""
     return Filter(NAME, remeshEdgeLength=AbsPerc(remesh, 0.0, diag), targetCount=target, hausdorffBudget=budget,
                   minAngle=min_angle, maxTravel=travel, protect=Enum(protect, PROTECT),
-                  relaxation=Enum(relaxation, ["Local", "Global"]), timeLimit=time_limit)
+                  relaxation=Enum(relaxation, ["Local", "Global"]), timeLimit=time_limit, colorize=colorize)
 
 
 def diagonal(mesh):

@@ -16,9 +16,9 @@ def hist(m):
     return np.bincount(v[irregular_mask(m)], minlength=16)
 
 
-def move_pair(direction=0, steps=5, toward=False, point=(0.0, 0.0, 0.0), relax=True):
+def move_pair(direction=0, steps=5, toward=False, point=(0.0, 0.0, 0.0), relax=True, colorize=True):
     return Filter("Irregular Vertices: Move Pair", lead=Enum(0, LEAD), direction=direction, steps=steps,
-                  towardPoint=toward, point=Point3f(*point), relax=relax)
+                  towardPoint=toward, point=Point3f(*point), relax=relax, colorize=colorize)
 
 
 def preserved_irregular(src, out):
@@ -128,15 +128,15 @@ def test_refusals(corpus):
     src = read_off(corpus("knot1.off"))
     val = valences(src)
     # a 5-7 pair cannot cancel (Theorem 5.5)
-    r = run(corpus("knot1.off"), filters=[select_vertices([47, 3186]), Filter("Irregular Vertices: Cancel Triple", relax=True)])
+    r = run(corpus("knot1.off"), filters=[select_vertices([47, 3186]), Filter("Irregular Vertices: Cancel Triple", relax=True, colorize=True)])
     assert r.returncode == 255 and "Theorem 5.5" in r.log and not os.path.exists(r.output_path)
     # one irregular vertex cannot move alone (Theorem 5.1)
     r = run(corpus("knot1.off"), filters=[select_vertices([47]), move_pair()])
     assert r.returncode == 255 and "Theorem 5.1" in r.log
     # aggregation of regular vertices
     regular = [int(i) for i in np.nonzero(val == 6)[0][:2]]
-    r = run(corpus("knot1.off"), filters=[select_vertices(regular), Filter("Irregular Vertices: Aggregate", relax=True)])
+    r = run(corpus("knot1.off"), filters=[select_vertices(regular), Filter("Irregular Vertices: Aggregate", relax=True, colorize=True)])
     assert r.returncode == 255 and "aggregation merges only" in r.log
     # wrong count
-    r = run(corpus("knot1.off"), filters=[select_vertices([47, 3186, 5, 6, 7]), Filter("Irregular Vertices: Cancel Quadruple", relax=True)])
+    r = run(corpus("knot1.off"), filters=[select_vertices([47, 3186, 5, 6, 7]), Filter("Irregular Vertices: Cancel Quadruple", relax=True, colorize=True)])
     assert r.returncode == 255 and "needs exactly 4" in r.log

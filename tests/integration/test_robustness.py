@@ -6,7 +6,8 @@ import os
 import numpy as np
 import pytest
 
-from mlpy import AbsPerc, Enum, Filter, Point3f, check_invariants, run, select_vertices
+from mlpy import (AbsPerc, Enum, Filter, Mesh, Param, Point3f, check_invariants, read_off, read_ply, run,
+                  select_vertices, write_ply)
 
 LEAD = ["Lower valence", "Higher valence", "Lower index", "Higher index"]
 OPS = ["5-7 pair move", "v5/v7 move with 5-7 pair generation",
@@ -18,24 +19,25 @@ def all_filters():
     return {
         "analyze": Filter("Irregular Vertices: Analyze", select=Enum(1, ["None", "All irregular", "Only valence"]),
                           valence=5, colorize=True),
-        "atomic": Filter("Irregular Vertices: Atomic Operation", operation=Enum(3, OPS), direction=0, relax=True),
+        "atomic": Filter("Irregular Vertices: Atomic Operation", operation=Enum(3, OPS), direction=0, relax=True,
+                         colorize=True),
         "relax": Filter("Irregular Vertices: Relax", mode=Enum(0, ["Local", "Global"]), iterations=2,
                         region=Enum(0, ["All", "Selection", "Around irregular vertices"]), reproject=True,
                         featureAngle=60.0),
         "reduce": Filter("Irregular Vertices: Reduce to Valence 5 and 7",
-                         scope=Enum(0, ["All irregular vertices", "Selected vertices"]), relax=True),
-        "aggregate": Filter("Irregular Vertices: Aggregate", relax=True),
+                         scope=Enum(0, ["All irregular vertices", "Selected vertices"]), relax=True, colorize=True),
+        "aggregate": Filter("Irregular Vertices: Aggregate", relax=True, colorize=True),
         "move": Filter("Irregular Vertices: Move Pair", lead=Enum(0, LEAD), direction=0, steps=1, towardPoint=False,
-                       point=Point3f(0.0, 0.0, 0.0), relax=True),
-        "triple": Filter("Irregular Vertices: Cancel Triple", relax=True),
-        "quadruple": Filter("Irregular Vertices: Cancel Quadruple", relax=True),
+                       point=Point3f(0.0, 0.0, 0.0), relax=True, colorize=True),
+        "triple": Filter("Irregular Vertices: Cancel Triple", relax=True, colorize=True),
+        "quadruple": Filter("Irregular Vertices: Cancel Quadruple", relax=True, colorize=True),
         "generate": Filter("Irregular Vertices: Generate",
                            kind=Enum(1, ["Triple from a v5 or v7", "Quadruple from a regular vertex"]),
-                           direction=0, spacing=1, relax=True),
+                           direction=0, spacing=1, relax=True, colorize=True),
         "automatic": Filter("Irregular Vertices: Automatic Reduction", remeshEdgeLength=AbsPerc(0.0), targetCount=0,
                             hausdorffBudget=0.5, minAngle=30.0, maxTravel=12,
                             protect=Enum(0, ["Nothing", "Selected region untouched", "Selected irregular vertices kept"]),
-                            relaxation=Enum(0, ["Local", "Global"]), timeLimit=0.0),
+                            relaxation=Enum(0, ["Local", "Global"]), timeLimit=0.0, colorize=True),
     }
 
 
@@ -131,3 +133,50 @@ def test_real_defective_models_do_not_crash(corpus):
                 assert "Irregular Vertices: refused" in r.log
             else:
                 check_invariants(r.mesh)
+
+
+def _painted_copy(src, path, seed=5):
+    """The corpus mesh as a PLY with the user's own vertex colours and quality."""
+    m = read_off(src)
+    rng = np.random.default_rng(seed)
+    rgb = rng.integers(0, 256, size=(len(m.vertices), 3)).astype(np.uint8)
+    props = {"red": rgb[:, 0], "green": rgb[:, 1], "blue": rgb[:, 2], "alpha": np.full(len(m.vertices), 255, np.uint8),
+             "quality": rng.random(len(m.vertices)).astype(np.float32)}
+    write_ply(Mesh(m.vertices, m.faces), path, vertex_props=props)
+    return read_ply(path)
+
+
+def _kept_attributes(before, after):
+    """(vertices of `after` found unmoved in `before`, how many of them kept colour and quality)."""
+    index = {tuple(p): i for i, p in enumerate(before.vertices.astype(np.float32))}
+    found = kept = 0
+    for j, p in enumerate(after.vertices.astype(np.float32)):
+        i = index.get(tuple(p))
+        if i is None:
+            continue
+        found += 1
+        kept += all(before.prop(c)[i] == after.prop(c)[j] for c in ("red", "green", "blue", "quality"))
+    return found, kept
+
+
+@pytest.mark.parametrize("key", ["move", "automatic"])
+def test_user_colours_and_quality_survive_where_no_edit_reaches(corpus, tmp_path, key):
+    """With 'Colour by valence' off, every vertex an edit did not move keeps the colour and the
+    quality the user gave it (new vertices take those of the vertex they were split from)."""
+    before = _painted_copy(corpus("knot1.off"), str(tmp_path / "painted.ply"))
+    flt = all_filters()[key]
+    flt.params[-1] = Param("RichBool", "colorize", False)
+    if key == "move":  # a long move, so that many vertices are edited
+        pre = [select_vertices([47, 3186])]
+        flt.params[2] = Param("RichInt", "steps", 20)
+    else:  # the final relaxation moves every free vertex: protect half of the mesh
+        pre = [Filter("Conditional Vertex Selection", condSelect="(x < 0)")]
+        flt.params[5] = Param("RichEnum", "protect", 1, {"enum": ["Nothing", "Selected region untouched",
+                                                                  "Selected irregular vertices kept"]})
+    r = run(str(tmp_path / "painted.ply"), filters=pre + [flt], mask=("vc", "vq", "vf"))
+    assert r.ok, r.log[-2000:]
+    check_invariants(r.mesh)
+    found, kept = _kept_attributes(before, r.mesh)
+    assert found > 0.3 * len(before.vertices), found  # most of the mesh is untouched
+    assert kept == found, (kept, found)
+    assert found < len(r.mesh.vertices)  # and some vertices were edited

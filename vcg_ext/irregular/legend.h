@@ -34,10 +34,10 @@ inline vcg::Color4b LegendColor(int equivalentValence) {
 /// Writes the valence into vertex quality and, if colorize, the legend colour into vertex
 /// colour, for every live referenced vertex. Unreferenced vertices are left alone.
 template <class MeshType>
-void PaintValences(MeshType& m, const ValenceField<MeshType>& vf, bool colorize) {
+void PaintValences(MeshType& m, const ValenceField<MeshType>& vf, bool colorize, bool writeQuality = true) {
   for (size_t i = 0; i < m.vert.size(); ++i) {
     if (m.vert[i].IsD() || !vf.referenced[i]) continue;
-    m.vert[i].Q() = typename MeshType::VertexType::QualityType(vf.valence[i]);
+    if (writeQuality) m.vert[i].Q() = typename MeshType::VertexType::QualityType(vf.valence[i]);
     if (colorize) m.vert[i].C() = LegendColor(vf.Equivalent(i));
   }
 }
