@@ -19,16 +19,10 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "tests", "integration"))
-from mlpy import (DATA, AbsPerc, Enum, Filter, euler_characteristic, hausdorff, irregular_mask,  # noqa: E402
-                  read_mesh, run, shape_measures, valences)
+from mlpy import (DATA, AbsPerc, Enum, Filter, diagonal, edge_length_for, euler_characteristic,  # noqa: E402
+                  hausdorff, irregular_mask, read_mesh, run, shape_measures, valences)
 
 MODELS = ["bunny00.off", "armadillo.off", "fandisk.off", "camel.off", "homer.off", "elephant.off", "knot1.off"]
-
-
-def edge_length_for(mesh, vertices):
-    p = mesh.vertices[mesh.faces]
-    area = 0.5 * np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1).sum()
-    return float(np.sqrt(2 * area / (np.sqrt(3) * vertices)))
 
 
 def peer(diag, length):
@@ -51,7 +45,7 @@ def measure(src, path, seconds):
     irr = irregular_mask(m)
     hist = {int(k): int(c) for k, c in zip(*np.unique(val[val > 0], return_counts=True))}
     ab, ba = hausdorff(src, m)
-    diag = float(np.linalg.norm(np.ptp(src.vertices, axis=0)))
+    diag = diagonal(src)
     s = shape_measures(m)
     return {"V": int((val > 0).sum()), "chi": euler_characteristic(m), "irr": int(irr.sum()),
             "share": 100.0 * irr.sum() / max(1, (val > 0).sum()), "hist": hist, "H": 100 * max(ab, ba) / diag,
@@ -80,7 +74,7 @@ def main():
     for name in a.models:
         srcpath = os.path.join(DATA, name)
         src = read_mesh(srcpath)
-        diag = float(np.linalg.norm(np.ptp(src.vertices, axis=0)))
+        diag = diagonal(src)
         length = edge_length_for(src, a.vertices)
         base = os.path.splitext(name)[0]
         for who, flt in [("MeshLab isotropic remeshing", peer(diag, length)),

@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from mlpy import (EXAMPLES, AbsPerc, Enum, Filter, check_invariants, gaussian_curvature_near,  # noqa: E402
-                  hausdorff, irregular_mask, read_mesh, run, select_vertices, selected_mask, shape_measures,
+from mlpy import (EXAMPLES, AbsPerc, Enum, Filter, check_invariants, diagonal, edge_length_for,  # noqa: E402
+                  gaussian_curvature_near, hausdorff, irregular_mask, read_mesh, run, select_vertices, selected_mask, shape_measures,
                   valences)
 
 NAME = "Irregular Vertices: Automatic Reduction"
@@ -23,17 +23,6 @@ def reduction(diag, remesh=0.0, target=0, budget=0.5, min_angle=30.0, travel=12,
     return Filter(NAME, remeshEdgeLength=AbsPerc(remesh, 0.0, diag), targetCount=target, hausdorffBudget=budget,
                   minAngle=min_angle, maxTravel=travel, protect=Enum(protect, PROTECT),
                   relaxation=Enum(relaxation, ["Local", "Global"]), timeLimit=time_limit, colorize=colorize)
-
-
-def diagonal(mesh):
-    return float(np.linalg.norm(np.ptp(mesh.vertices, axis=0)))
-
-
-def edge_length_for(mesh, vertices):
-    """Equilateral edge length that gives about `vertices` vertices on this surface."""
-    p = mesh.vertices[mesh.faces]
-    area = 0.5 * np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1).sum()
-    return float(np.sqrt(2 * area / (np.sqrt(3) * vertices)))
 
 
 def hausdorff_percent(original, result_path):

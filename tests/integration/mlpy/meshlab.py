@@ -32,7 +32,7 @@ __all__ = [
     "is_edge_manifold", "is_consistently_oriented", "irregular_mask", "gauss_bonnet_sum",
     "selected_mask", "deleted_mask", "check_invariants",
     "closest_point_distances", "surface_samples", "hausdorff", "triangle_angles", "shape_measures",
-    "gaussian_curvature_near",
+    "gaussian_curvature_near", "diagonal", "triangle_areas", "edge_length_for",
 ]
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -711,6 +711,22 @@ def hausdorff(mesh_a, mesh_b):
             float(closest_point_distances(surface_samples(b), a).max()))
 
 
+def diagonal(mesh):
+    """Length of the bounding-box diagonal."""
+    return float(np.linalg.norm(np.ptp(mesh.vertices, axis=0)))
+
+
+def triangle_areas(mesh):
+    p = mesh.vertices[mesh.faces]
+    return 0.5 * np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1)
+
+
+def edge_length_for(mesh, vertices):
+    """Edge length of equilateral triangles that gives this surface about `vertices` vertices
+    (each vertex owns two triangles), as vcg_ext's EdgeLengthForVertexCount."""
+    return float(np.sqrt(2 * triangle_areas(mesh).sum() / (np.sqrt(3) * vertices)))
+
+
 def triangle_angles(mesh):
     """(F, 3) interior angles in degrees."""
     p = mesh.vertices[mesh.faces]
@@ -736,10 +752,8 @@ def gaussian_curvature_near(mesh, points, radius):
     v, f = mesh.vertices, mesh.faces
     defect = np.full(len(v), 2 * np.pi)
     np.subtract.at(defect, f.ravel(), np.radians(triangle_angles(mesh)).ravel())
-    p = v[f]
-    area = 0.5 * np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1)
     vertex_area = np.zeros(len(v))
-    np.add.at(vertex_area, f.ravel(), np.repeat(area / 3, 3))
+    np.add.at(vertex_area, f.ravel(), np.repeat(triangle_areas(mesh) / 3, 3))
     tree = cKDTree(v)
     out = []
     for q in np.atleast_2d(points):
