@@ -5,6 +5,11 @@
 #  - build tools, Qt5/GLEW/Eigen headers, GoogleTest, Google Benchmark
 #  - Xvfb (meshlabserver needs an X display), Python 3 test driver deps (Debian's pytest, numpy)
 #  - the libcgal-demo corpus of real meshes, unpacked under .deps/data
+#  - MeshLab 2025.07's source (plugin headers + its vcglib) from Debian unstable's source
+#    package, through a private apt configuration (sid never enters the system's sources and no
+#    binary package comes from it), unpacked under .deps/meshlab2025-src
+#  - a Python venv (.deps/venv) with pymeshlab 2025.7.post1 from PyPI (MeshLab 2025.07's
+#    libmeshlab-common.so and Qt 5.15 come from its wheel), numpy, scipy, pytest
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 deps="$here/.deps"
@@ -46,6 +51,37 @@ if [ ! -d "$deps/meshlab-src" ]; then
   [ -n "$d" ] || { echo "setup: apt-get source meshlab gave no folder" >&2; exit 1; }
   mv "$d" "$deps/meshlab-src"
   rm -rf "$tmp"
+fi
+
+# MeshLab 2025.07 source: Debian sid's meshlab 2025.07~dfsg-4 orig tarball (no .dsc is served
+# for it, hence --tar-only), fetched with a private sources list, lists and cache.
+if [ ! -d "$deps/meshlab2025-src/src/common" ]; then
+  sid="$deps/apt-sid"
+  mkdir -p "$sid/lists/partial" "$sid/cache/archives/partial" "$sid/dl"
+  mirror=$(grep -hoE '^URIs: *\S+' /etc/apt/sources.list.d/debian.sources 2>/dev/null | head -1 | awk '{print $2}')
+  [ -n "$mirror" ] || mirror=$(grep -hoE '^deb +\S+' /etc/apt/sources.list 2>/dev/null | head -1 | awk '{print $2}')
+  [ -n "$mirror" ] || mirror=http://deb.debian.org/debian
+  echo "deb-src [signed-by=/usr/share/keyrings/debian-archive-keyring.gpg] $mirror sid main" > "$sid/sid.list"
+  aptsid=(-o Dir::Etc::sourcelist="$sid/sid.list" -o Dir::Etc::sourceparts=/dev/null
+          -o Dir::State::Lists="$sid/lists" -o Dir::Cache="$sid/cache")
+  apt-get "${aptsid[@]}" update -qq
+  (cd "$sid/dl" && apt-get "${aptsid[@]}" source -qq --tar-only 'meshlab=2025.07~dfsg-4' 2>&1 | grep -v "^W: Download is performed unsandboxed" || true)
+  tarball="$sid/dl/meshlab_2025.07~dfsg.orig.tar.xz"
+  [ -f "$tarball" ] || { echo "setup: apt-get source --tar-only meshlab=2025.07~dfsg-4 gave no tarball" >&2; exit 1; }
+  tmp=$(mktemp -d "$deps/src2025.XXXX")
+  tar -xJf "$tarball" -C "$tmp"
+  d=$(find "$tmp" -maxdepth 1 -mindepth 1 -type d -name 'meshlab-*' | head -1)
+  [ "$(cat "$d/ML_VERSION")" = "2025.07" ] || { echo "setup: the sid tarball is not MeshLab 2025.07" >&2; exit 1; }
+  rm -rf "$deps/meshlab2025-src"
+  mv "$d" "$deps/meshlab2025-src"
+  rm -rf "$tmp"
+fi
+
+# Python venv for pymeshlab (never the system Python's site-packages).
+venv="$deps/venv"
+if [ ! -x "$venv/bin/python" ] || ! "$venv/bin/python" -c "import pymeshlab, numpy, scipy, pytest" 2>/dev/null; then
+  /usr/bin/python3 -m venv "$venv"
+  "$venv/bin/pip" install -q --disable-pip-version-check -r "$here/scripts/requirements.txt"
 fi
 
 # Real meshes from Debian's libcgal-demo (never committed).
