@@ -1,0 +1,96 @@
+// filter_irregular: the translation both MeshLab adapters share, where MeshLab 2020.09 and
+// 2025.07 spell things the same way (RichParameterList getters, MeshModel's MM_* masks,
+// vcg's progress callback). Included by meshlab2020/ and meshlab2025/ only.
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include <QString>
+
+#include "core/filter_spec.h"
+#include "core/mesh_type.h"
+
+namespace filter_irregular {
+
+/// Reads every parameter the spec lists from MeshLab's list (same getters in both APIs).
+template <class RichParameterListT>
+ParamValues ReadParams(const FilterSpec& spec, const RichParameterListT& par) {
+  ParamValues v;
+  for (const ParamSpec& p : spec.params) {
+    const QString name = QString::fromStdString(p.name);
+    switch (p.type) {
+      case ParamType::Bool: v.Set(p.name, par.getBool(name) ? 1 : 0); break;
+      case ParamType::Int: v.Set(p.name, par.getInt(name)); break;
+      case ParamType::Float: v.Set(p.name, par.getFloat(name)); break;
+      case ParamType::Enum: v.Set(p.name, par.getEnum(name)); break;
+      case ParamType::Percentage: v.Set(p.name, par.getAbsPerc(name)); break;
+      case ParamType::Point3: {
+        const auto q = par.getPoint3m(name);
+        v.SetPoint(p.name, vcg::Point3d(q[0], q[1], q[2]));
+        break;
+      }
+    }
+  }
+  return v;
+}
+
+/// MeshModel's data mask for the components a filter asks for (same MM_* in both APIs).
+template <class MeshModelT>
+int DataMaskOf(unsigned components) {
+  int mask = 0;
+  if (components & kVertColor) mask |= MeshModelT::MM_VERTCOLOR;
+  if (components & kVertQuality) mask |= MeshModelT::MM_VERTQUALITY;
+  if (components & kVertMark) mask |= MeshModelT::MM_VERTMARK;
+  if (components & kFaceMark) mask |= MeshModelT::MM_FACEMARK;
+  if (components & kFaceFlag) mask |= MeshModelT::MM_FACEFLAG;
+  return mask;
+}
+
+/// What changes, for MeshLab's render buffers (postCondition).
+template <class MeshModelT>
+int PostConditionOf(const FilterSpec& spec) {
+  if (!spec.changesConnectivity)
+    return MeshModelT::MM_VERTCOLOR | MeshModelT::MM_VERTQUALITY | MeshModelT::MM_VERTFLAGSELECT;
+  return MeshModelT::MM_ALL;
+}
+
+/// The FilterContext of a MeshModel; logging goes through the adapter's logger.
+template <class MeshModelT>
+class MeshModelContext : public FilterContext {
+ public:
+  MeshModelContext(MeshModelT& mm, vcg::CallBackPos* cb, std::function<void(LogLevel, const std::string&)> logger)
+      : mm_(mm), cb_(cb), logger_(std::move(logger)) {}
+  CMeshO& Mesh() override { return mm_.cm; }
+  void Require(unsigned components) override { mm_.updateDataMask(DataMaskOf<MeshModelT>(components)); }
+  void Log(LogLevel level, const std::string& line) override { logger_(level, line); }
+  bool (*Progress())(const int, const char*) override { return cb_; }
+
+ private:
+  MeshModelT& mm_;
+  vcg::CallBackPos* cb_;
+  std::function<void(LogLevel, const std::string&)> logger_;
+};
+
+/// "key=value key=[a b c] ..." for the log (meshlabserver users read the output values there).
+inline std::string OutputValuesText(const FilterOutcome& out) {
+  std::string s;
+  for (auto& kv : out.values) {
+    s += (s.empty() ? "" : " ") + kv.first + "=";
+    const OutputValue& v = kv.second;
+    switch (v.kind) {
+      case OutputValue::Int: s += Format("%lld", (long long)v.number); break;
+      case OutputValue::Bool: s += v.number != 0 ? "true" : "false"; break;
+      case OutputValue::Float: s += Format("%.6g", v.number); break;
+      case OutputValue::Vector: {
+        s += "[";
+        for (size_t i = 0; i < v.vector.size(); ++i) s += Format(i ? " %.6g" : "%.6g", v.vector[i]);
+        s += "]";
+        break;
+      }
+    }
+  }
+  return s;
+}
+
+}  // namespace filter_irregular

@@ -1,0 +1,192 @@
+// filter_irregular: "Irregular Vertices: Automatic Reduction"
+// (vcg_ext/irregular/automatic_reduction.h): optional remeshing, protection of the selection,
+// progress, log and output values.
+#include <algorithm>
+#include <chrono>
+#include <memory>
+
+#include "filter_common.h"
+#include "filters.h"
+
+#include <vcg/complex/append.h>
+#include <vcg/complex/algorithms/update/bounding.h>
+#include <vcg/complex/algorithms/update/normal.h>
+#include <vcg/complex/algorithms/update/topology.h>
+
+#include <vcg_ext/irregular/automatic_reduction.h>
+#include <vcg_ext/irregular/quality.h>
+#include <vcg_ext/irregular/remeshing.h>
+
+namespace irr = vcg_ext::irregular;
+
+namespace filter_irregular {
+
+/// Why a reduction stopped where it did: the output value `stop_reason` (documented in the
+/// README; pymeshlab drops strings, so the words are in the log).
+enum ReductionStop {
+  kStopNoMoreEdits = 0,   ///< no further edit passes the limits (the usual end)
+  kStopTargetReached = 1, ///< targetCount irregular vertices or fewer remain
+  kStopTimeLimit = 2,     ///< timeLimit reached: what was done is kept
+  kStopAllUndone = 3,     ///< every run overshot the Hausdorff budget: all edits undone
+  kStopInterrupted = 4,   ///< the progress callback asked to stop
+};
+
+namespace {
+/// Per-vertex frozen flags from the selection (empty: nothing protected).
+std::vector<char> FrozenFromSelection(CMeshO& m, int protect) {
+  std::vector<char> frozen;
+  if (protect == 0) return frozen;
+  frozen.assign(m.vert.size(), 0);
+  irr::ValenceField<CMeshO> vf = irr::ComputeValences(m);
+  std::vector<int> seeds;
+  for (size_t i = 0; i < m.vert.size(); ++i) {
+    if (m.vert[i].IsD() || !m.vert[i].IsS()) continue;
+    if (protect == 2 && !vf.IsIrregular(i)) continue;
+    seeds.push_back(int(i));
+  }
+  // Region untouched: an edit changes the faces around every vertex it touches, so the
+  // selection's 1-ring is frozen too; then no face with a selected corner changes.
+  for (int v : protect == 1 ? irr::KRing(m, seeds, 1) : seeds) frozen[size_t(v)] = 1;
+  return frozen;
+}
+
+std::vector<double> HistogramVector(const std::map<int, int>& h) {
+  int top = 0;
+  for (auto& kv : h) top = std::max(top, kv.first);
+  std::vector<double> v(size_t(top) + 1, 0.0);
+  for (auto& kv : h) v[size_t(kv.first)] = kv.second;
+  return v;
+}
+}  // namespace
+
+FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par) {
+  CMeshO& m = ctx.Mesh();
+  const std::string defect = InputDefect(m);
+  if (!defect.empty()) return FilterOutcome::Refuse(defect);
+  const int protect = par.Enum("protect");
+  const double remeshLength = par.Float("remeshEdgeLength");
+  const double budget = par.Float("hausdorffBudget");
+  if (protect != 0 && remeshLength > 0)
+    return FilterOutcome::Refuse(
+        "Remeshing first replaces every vertex, so a selection cannot be protected: set 'Remesh first' to 0 or "
+        "'Protect the selection' to Nothing.");
+  if (protect != 0 && SelectedVertices(m).empty())
+    return FilterOutcome::Refuse("'Protect the selection' is set but no vertex is selected.");
+  const auto t0 = std::chrono::steady_clock::now();
+  irr::SurfaceProjector original(m);
+  irr::TopologySummary before = irr::Summarize(m);
+  LogShape(ctx, "Before", m);
+  FilterOutcome out;
+  AddSummaryValues(out, before, "_input");
+
+  // Remeshing replaces the mesh: keep a copy to give back if the run is refused or interrupted.
+  std::unique_ptr<CMeshO> saved;
+  auto restore = [&] {
+    if (!saved) return;
+    m.Clear();
+    vcg::tri::Append<CMeshO, CMeshO>::MeshCopy(m, *saved, false, true);
+    vcg::tri::UpdateTopology<CMeshO>::FaceFace(m);
+    vcg::tri::UpdateTopology<CMeshO>::VertexFace(m);
+    vcg::tri::UpdateBounding<CMeshO>::Box(m);
+  };
+  auto cb = ctx.Progress();
+  double remeshDistance = 0;
+  if (remeshLength > 0) {
+    saved.reset(new CMeshO);
+    vcg::tri::Append<CMeshO, CMeshO>::MeshCopy(*saved, m, false, true);
+    if (cb) cb(1, "Isotropic remeshing");
+    ctx.Require(kVertQuality | kVertMark | kFaceMark | kFaceFlag);
+    irr::RemeshOptions ro;
+    ro.targetEdgeLength = float(remeshLength);
+    irr::RemeshIsotropic(m, ro);
+    remeshDistance = irr::HausdorffPercent(m, original);
+    ctx.Logf("Isotropic remeshing to edge length %.5g: %d vertices, %d irregular, %.4f%% of the diagonal from the input",
+             remeshLength, m.VN(), irr::Summarize(m).irregular, remeshDistance);
+    // The budget bounds the result's distance to the filter's input: remeshing counts.
+    if (remeshDistance > budget) {
+      restore();
+      return FilterOutcome::Refuse(
+          Format("Remeshing to edge length %g alone leaves the input by %.3f%% of the diagonal, more than the "
+                 "Hausdorff budget (%g%%): use a shorter edge length or a larger budget.",
+                 remeshLength, remeshDistance, budget));
+    }
+  }
+
+  irr::ReductionOptions opt;
+  opt.targetCount = par.Int("targetCount");
+  opt.hausdorffBudgetPercent = budget;
+  opt.minAngleDeg = par.Float("minAngle");
+  opt.maxTravel = par.Int("maxTravel");
+  opt.glideTravel = 4 * opt.maxTravel;
+  opt.finalRelax = par.Enum("relaxation") == 1 ? irr::RelaxMode::Global : irr::RelaxMode::Local;
+  if (par.Float("timeLimit") > 0) opt.timeLimitSeconds = par.Float("timeLimit");  // 0: no limit
+  opt.frozen = FrozenFromSelection(m, protect);
+  if (cb) opt.progress = [cb](int pct, const char* what) { return cb(pct, what); };
+  irr::AutomaticReduction<CMeshO> reduction(m, original, opt);
+  irr::ReductionReport rep = reduction.Run();
+  if (!rep) {
+    restore();
+    return FilterOutcome::Refuse(rep.result.reason);
+  }
+  vcg::tri::UpdateNormal<CMeshO>::PerVertexNormalizedPerFace(m);
+  vcg::tri::UpdateBounding<CMeshO>::Box(m);
+
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  ctx.Logf("Automatic reduction: %d -> %d irregular vertices (%d before any remeshing)", rep.irregularBefore,
+           rep.irregularAfter, before.irregular);
+  ctx.Logf("Valences before:%s", HistogramText(rep.histogramBefore).c_str());
+  ctx.Logf("Valences after:%s", HistogramText(rep.histogramAfter).c_str());
+  ctx.Logf("Edits: %d type splits, %d local cancellations, %d pair transports and %d glides (%d pair steps), "
+           "%d stretched 5-7 pairs split and cancelled, %d edits undone (angle or Hausdorff limit)",
+           rep.typeSplits, rep.localCancellations, rep.transports, rep.glides, rep.pairSteps, rep.splitAbsorptions,
+           rep.undone);
+  if (rep.timeLimitReached) ctx.Warnf("Time limit reached: editing stopped early");
+  if (rep.globalRelaxUndone) ctx.Logf("The final global relaxation lowered the smallest angle and was undone");
+  if (rep.finalSweepsUndone) ctx.Logf("The final local relaxation sweeps overshot the Hausdorff budget and were undone");
+  const irr::ShapeMeasures shape = irr::MeasureShape(m);
+  LogShape(ctx, "After", m);
+  ctx.Logf("Hausdorff distance to the input: %.4f%% of the bounding box diagonal (budget %.3f%%)", rep.hausdorffPercent,
+           opt.hausdorffBudgetPercent);
+  if (rep.budgetRetries > 0)
+    ctx.Warnf("The first run overshot the Hausdorff budget (the per-edit checks sample the surface): redone %d time(s) "
+              "with a tighter per-edit budget",
+              rep.budgetRetries);
+  if (rep.allUndone)
+    ctx.Warnf("Every run overshot the Hausdorff budget: all reduction edits were undone. Raise the budget or remesh "
+              "finer first.");
+  ctx.Logf("Time: %.2f s (reduction %.2f s)", seconds, rep.seconds);
+  // Keep a protected selection; otherwise select what remains irregular.
+  const bool colorize = par.Bool("colorize");
+  const irr::TopologySummary after = PaintAndLog(ctx, colorize, protect == 0 ? 1 : 0, 0, colorize);
+
+  int stop = kStopNoMoreEdits;
+  if (rep.allUndone) stop = kStopAllUndone;
+  else if (rep.interrupted) stop = kStopInterrupted;
+  else if (rep.timeLimitReached) stop = kStopTimeLimit;
+  else if (opt.targetCount > 0 && rep.irregularAfter <= opt.targetCount) stop = kStopTargetReached;
+  out.SetBool("remeshed", remeshLength > 0);
+  out.SetInt("remeshed_vertices", remeshLength > 0 ? m.VN() : 0);
+  out.SetFloat("remesh_hausdorff_percent", remeshDistance);
+  out.SetInt("irregular_before", rep.irregularBefore);
+  out.SetVector("valence_histogram_before", HistogramVector(rep.histogramBefore));
+  AddSummaryValues(out, after, "_after");
+  out.SetInt("vertices_after", after.vertices);
+  out.SetInt("faces_after", after.faces);
+  out.SetInt("type_splits", rep.typeSplits);
+  out.SetInt("local_cancellations", rep.localCancellations);
+  out.SetInt("transports", rep.transports);
+  out.SetInt("glides", rep.glides);
+  out.SetInt("pair_steps", rep.pairSteps);
+  out.SetInt("split_absorptions", rep.splitAbsorptions);
+  out.SetInt("undone", rep.undone);
+  out.SetInt("budget_retries", rep.budgetRetries);
+  out.SetFloat("hausdorff_percent", rep.hausdorffPercent);
+  out.SetFloat("min_angle_after", shape.minAngleDeg);
+  out.SetFloat("percent_below_30_after", 100.0 * shape.shareBelow30);
+  out.SetFloat("seconds", seconds);
+  out.SetFloat("reduction_seconds", rep.seconds);
+  out.SetInt("stop_reason", stop);
+  return out;
+}
+
+}  // namespace filter_irregular

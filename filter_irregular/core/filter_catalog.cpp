@@ -1,0 +1,353 @@
+// filter_irregular: the one place that says what each filter is (filter_spec.h): name,
+// pymeshlab name, help, category, parameters and apply function. Adding a filter or a
+// parameter is one edit here; both MeshLab adapters read this list. Parameter names are part
+// of users' .mlx scripts and Python calls: CHANGELOG.md lists every rename or removal.
+#include "filter_spec.h"
+#include "filters.h"
+
+namespace filter_irregular {
+
+namespace {
+
+ParamSpec Bool(const char* name, bool def, const char* label, const char* help) {
+  ParamSpec p;
+  p.name = name;
+  p.type = ParamType::Bool;
+  p.defaultValue = def ? 1 : 0;
+  p.label = label;
+  p.help = help;
+  return p;
+}
+
+ParamSpec Int(const char* name, int def, int lo, int hi, const char* label, const char* help) {
+  ParamSpec p;
+  p.name = name;
+  p.type = ParamType::Int;
+  p.defaultValue = def;
+  p.minValue = lo;
+  p.maxValue = hi;
+  p.label = label;
+  p.help = help;
+  return p;
+}
+
+ParamSpec Float(const char* name, double def, double lo, double hi, const char* label, const char* help) {
+  ParamSpec p = Int(name, 0, 0, 0, label, help);
+  p.type = ParamType::Float;
+  p.defaultValue = def;
+  p.minValue = lo;
+  p.maxValue = hi;
+  return p;
+}
+
+ParamSpec Enum(const char* name, int def, std::vector<std::string> values, const char* label, const char* help) {
+  ParamSpec p;
+  p.name = name;
+  p.type = ParamType::Enum;
+  p.defaultValue = def;
+  p.enumValues = std::move(values);
+  p.label = label;
+  p.help = help;
+  return p;
+}
+
+ParamSpec Percentage(const char* name, double def, const char* label, const char* help) {
+  ParamSpec p;
+  p.name = name;
+  p.type = ParamType::Percentage;
+  p.defaultValue = def;
+  p.label = label;
+  p.help = help;
+  return p;
+}
+
+ParamSpec Point3(const char* name, const char* label, const char* help) {
+  ParamSpec p;
+  p.name = name;
+  p.type = ParamType::Point3;
+  p.label = label;
+  p.help = help;
+  return p;
+}
+
+// Neighbour directions can be at most the valence; 63 is far above any real one.
+const int kMaxDirection = 63;
+
+ParamSpec RelaxAfterEditing() {
+  return Bool("relax", true, "Relax after editing",
+              "Local relaxation of the 2-ring around each step, projected onto the surface as it was before the "
+              "filter (paper sec. 8).");
+}
+
+// Every editing filter, last: the legend, or the user's own colours and quality kept.
+ParamSpec Colorize() {
+  return Bool("colorize", true, "Colour by valence",
+              "Paint the valence legend (v5 blue, v7 orange, v8 red, ...) and write the valence into vertex quality. "
+              "Off: the vertex colours and quality you had are kept (a vertex an edit creates takes those of the "
+              "vertex it was split from).");
+}
+
+std::vector<FilterSpec> MakeCatalog() {
+  std::vector<FilterSpec> c;
+  FilterSpec f;
+
+  f = FilterSpec();
+  f.id = kAnalyze;
+  f.name = "Irregular Vertices: Analyze";
+  f.pythonName = "compute_irregular_vertex_analysis";
+  f.classes = kQuality | kMeasure | kSelection;
+  f.changesConnectivity = false;
+  f.info =
+      "Colours vertices by valence (v3- purple, v4 cyan, v5 blue, v6 grey, v7 orange, v8 red, v9+ dark red; "
+      "boundary vertices by valence + 2, so regular boundary vertices of valence 4 are grey), writes the valence "
+      "into vertex quality, optionally selects irregular vertices, and logs the valence histogram, the irregular "
+      "count, Euler characteristic, genus, boundary loops and whether the discrete Gauss-Bonnet identity "
+      "sum(6 - valence) + sum_boundary(4 - valence) = 6 chi holds (Li et al., Editing Operations for Irregular "
+      "Vertices in Triangle Meshes, eq. 2). Returns the counts (pymeshlab: a dict). Refuses non-manifold or "
+      "polygonal meshes without changing them.";
+  f.params = {
+      Enum("select", 1, {"None", "All irregular", "Only valence"}, "Select vertices",
+           "Replace the vertex selection: None keeps it as it is; All irregular selects every vertex of valence != 6 "
+           "(boundary: != 4); Only valence selects the vertices of the valence below (boundary vertices count as "
+           "valence + 2)."),
+      Int("valence", 5, 0, 1000, "Valence to select",
+          "Used with 'Only valence': select the vertices of this (interior-equivalent) valence."),
+      Bool("colorize", true, "Colour by valence",
+           "Paint vertices with the plugin's valence legend (v5 blue, v7 orange, v8 red, ...)."),
+  };
+  f.apply = ApplyAnalyze;
+  c.push_back(f);
+
+  f = FilterSpec();
+  f.id = kAtomic;
+  f.name = "Irregular Vertices: Atomic Operation";
+  f.pythonName = "meshing_irregular_atomic_operation";
+  f.classes = kRemeshing | kSelection;
+  f.info =
+      "Applies one atomic operation of Li et al. (sec. 6.1-6.2) to the selected vertices (select them with the "
+      "Analyze filter, by hand, or with 'Conditional Vertex Selection'):<br>"
+      "<b>5-7 pair move</b>: select an adjacent v5 and v7; direction 0..5 turns counter-clockwise around the v5 "
+      "starting at the v7 (1, 4: edge flips; 2, 3: collapses; 0, 5: splits).<br>"
+      "<b>v5/v7 move with 5-7 pair generation</b>: select one v5 or v7; it moves toward its neighbour number "
+      "'direction' (counted counter-clockwise from its neighbour of smallest index) and leaves an adjacent 5-7 "
+      "pair.<br>"
+      "<b>v5/v7 move with 5-7 pair removal</b>: select an adjacent 5-5-7 or 5-7-7 triple; it becomes one v5 or v7 "
+      "(triple cancellation).<br>"
+      "<b>5-5-7-7 generation</b> (by flip or by split): select one regular vertex.<br>"
+      "<b>5-5-7-7 removal</b>: select the four vertices of a quadruple in two triangles.<br>"
+      "<b>Edge flip / collapse</b>: select the two ends of the edge (collapse keeps the lower index). <b>Vertex "
+      "split</b>: select a vertex and two of its neighbours.<br>"
+      "Impossible requests are refused with the reason (one irregular vertex cannot move alone, Theorem 5.1; a 5-7 "
+      "pair cannot be cancelled, Theorem 5.5). A refused operation leaves the mesh unchanged. Afterwards vertices "
+      "are recoloured and the resulting irregular vertices selected.";
+  f.params = {
+      Enum("operation", 0,
+           {"5-7 pair move", "v5/v7 move with 5-7 pair generation",
+            "v5/v7 move with 5-7 pair removal (triple cancellation)", "5-5-7-7 generation by flip",
+            "5-5-7-7 generation by split", "5-5-7-7 removal", "Edge flip", "Edge collapse", "Vertex split"},
+           "Operation", "Which atomic operation to apply to the selected vertices."),
+      Int("direction", 0, 0, kMaxDirection, "Direction",
+          "5-7 pair move: 0..5 counter-clockwise around the v5 from the v7. Single-vertex operations: index of the "
+          "neighbour to move toward, counter-clockwise from the neighbour with the smallest vertex index."),
+      Bool("relax", true, "Relax after editing",
+           "Local relaxation of the 2-ring around the changed vertices, projected onto the surface as it was before "
+           "the filter (paper sec. 8)."),
+      Colorize(),
+  };
+  f.apply = ApplyAtomic;
+  c.push_back(f);
+
+  f = FilterSpec();
+  f.id = kRelax;
+  f.name = "Irregular Vertices: Relax";
+  f.pythonName = "apply_irregular_relaxation";
+  f.classes = kSmoothing | kRemeshing;
+  f.info =
+      "Improves the shape of triangles without changing connectivity (Li et al., sec. 8). <b>Local</b>: vertices "
+      "move one at a time in their tangent plane toward the centroid of their neighbours (Turk 1992). "
+      "<b>Global</b>: solves the quadratic energy of eq. 5 (uniform edge lengths, equal angles around each vertex) "
+      "with each vertex constrained to its tangent plane, with Eigen's conjugate gradient solver. Moved vertices "
+      "are projected back onto the mesh as it was before the filter. Vertices on sharp creases stay fixed. Logs "
+      "and returns triangle quality and the Hausdorff distance to the input before and after.";
+  f.params = {
+      Enum("mode", 0, {"Local", "Global"}, "Mode",
+           "Local: one vertex at a time (fast). Global: sparse least-squares solve of eq. 5."),
+      Int("iterations", 10, 0, 100000, "Iterations", "Sweeps (local) or solve-and-project rounds (global)."),
+      Enum("region", 0, {"All", "Selection", "Around irregular vertices"}, "Region",
+           "Which vertices move. With nothing selected, Selection relaxes the whole mesh. Around irregular "
+           "vertices: the 2-ring of every irregular vertex."),
+      Bool("reproject", true, "Project onto the original surface",
+           "Project moved vertices back onto the mesh as it was before the filter."),
+      Float("featureAngle", 60, 0, 180, "Feature angle (degrees)",
+            "Vertices on edges whose dihedral angle exceeds this stay fixed, so sharp creases survive. 0 disables."),
+  };
+  f.apply = ApplyRelax;
+  c.push_back(f);
+
+  f = FilterSpec();
+  f.id = kReduce;
+  f.name = "Irregular Vertices: Reduce to Valence 5 and 7";
+  f.pythonName = "meshing_irregular_reduce_to_valence_5_and_7";
+  f.classes = kRemeshing | kSelection;
+  f.info =
+      "Type splitting (Li et al., sec. 6.3): every irregular vertex of valence k > 7 becomes k-6 v7 (vertex "
+      "splits), every v4 (v3) two (three) v5 (an edge collapse), so the other operations, which work on v5 and v7, "
+      "apply. Vertices that cannot be reduced (e.g. no suitable neighbour) are kept and listed in the log. The "
+      "resulting irregular vertices are selected.";
+  f.params = {
+      Enum("scope", 0, {"All irregular vertices", "Selected vertices"}, "Vertices",
+           "Reduce every irregular vertex of valence other than 5 and 7, or only the selected ones."),
+      RelaxAfterEditing(),
+      Colorize(),
+  };
+  f.apply = ApplyReduce;
+  c.push_back(f);
+
+  f = FilterSpec();
+  f.id = kAggregate;
+  f.name = "Irregular Vertices: Aggregate";
+  f.pythonName = "meshing_irregular_aggregation";
+  f.classes = kRemeshing | kSelection;
+  f.info =
+      "Type aggregation (sec. 6.3), the inverse of type splitting: the selected v7s merge into one v8, v9, ... and "
+      "the selected v5s into one v4 (two) or v3 (three). They must be as close as type splitting leaves them (one "
+      "graph operation apart).";
+  f.params = {RelaxAfterEditing(), Colorize()};
+  f.apply = ApplyAggregate;
+  c.push_back(f);
+
+  f = FilterSpec();
+  f.id = kMovePair;
+  f.name = "Irregular Vertices: Move Pair";
+  f.pythonName = "meshing_irregular_move_pair";
+  f.classes = kRemeshing | kSelection;
+  f.info =
+      "Moves the selected pair of irregular vertices (sec. 7.1). An adjacent 5-7 pair translates 'steps' steps: "
+      "the first in 'direction' (0..5 counter-clockwise around the v5 from the v7), the next ones straight on; or, "
+      "with 'toward point', toward the picked point until it gets no closer. A non-adjacent 5-7 pair, or a 5-5 or "
+      "7-7 pair, moves by the pipeline of sec. 7.1.1: the lead vertex moves one step toward its neighbour "
+      "'direction' (counted counter-clockwise from its neighbour of smallest index) and generates a 5-7 pair, "
+      "which travels to the partner and cancels there, moving the partner: 5-5 and 7-7 pairs move symmetrically "
+      "(sec. 7.1.2). A single irregular vertex cannot move alone (Theorem 5.1).";
+  f.params = {
+      Enum("lead", 0, {"Lower valence", "Higher valence", "Lower index", "Higher index"}, "Leading vertex",
+           "Non-adjacent pairs: which selected vertex moves first (its partner follows)."),
+      Int("direction", 0, 0, kMaxDirection, "Direction",
+          "Adjacent 5-7 pair: 0..5 counter-clockwise around the v5 from the v7. Otherwise: neighbour index of the "
+          "lead vertex, counted counter-clockwise from its neighbour of smallest index."),
+      Int("steps", 1, 1, 1000000, "Steps", "How many steps the pair moves."),
+      Bool("towardPoint", false, "Toward point",
+           "Adjacent 5-7 pair: move toward 'point' until it gets no closer (steps and direction are ignored)."),
+      Point3("point", "Point",
+             "Where the pair should go: in the dialog, use Get / Surf. Pos. and double-click the mesh."),
+      RelaxAfterEditing(),
+      Colorize(),
+  };
+  f.apply = ApplyMovePair;
+  c.push_back(f);
+
+  f = FilterSpec();
+  f.id = kCancelTriple;
+  f.name = "Irregular Vertices: Cancel Triple";
+  f.pythonName = "meshing_irregular_cancel_triple";
+  f.classes = kRemeshing | kSelection;
+  f.info =
+      "Triple cancellation (sec. 7.2): the selected 5-5-7 triple becomes one v5, a 5-7-7 triple one v7. An adjacent "
+      "5-7 pair of the triple is moved to the third vertex, then the atomic removal applies. A 5-7 pair alone "
+      "cannot be cancelled (Theorem 5.5).";
+  f.params = {RelaxAfterEditing(), Colorize()};
+  f.apply = ApplyCancelTriple;
+  c.push_back(f);
+
+  f = FilterSpec();
+  f.id = kCancelQuadruple;
+  f.name = "Irregular Vertices: Cancel Quadruple";
+  f.pythonName = "meshing_irregular_cancel_quadruple";
+  f.classes = kRemeshing | kSelection;
+  f.info =
+      "Quadruple cancellation (sec. 7.3): the selected 5-5-7-7 quadruple, two adjacent 5-7 pairs, disappears: one "
+      "pair is moved to the other until they annihilate. Refused when the two pairs cannot annihilate (they must be "
+      "mirror images, sec. 7.3).";
+  f.params = {RelaxAfterEditing(), Colorize()};
+  f.apply = ApplyCancelQuadruple;
+  c.push_back(f);
+
+  f = FilterSpec();
+  f.id = kGenerate;
+  f.name = "Irregular Vertices: Generate";
+  f.pythonName = "meshing_irregular_generate";
+  f.classes = kRemeshing | kSelection;
+  f.info =
+      "Generation (sec. 7.3), the inverse of cancellation: the selected v5 (v7) becomes a 5-5-7 (5-7-7) triple, or "
+      "the selected regular vertex a 5-5-7-7 quadruple; the generated 5-7 pair is then moved 'spacing' steps away.";
+  f.params = {
+      Enum("kind", 0, {"Triple from a v5 or v7", "Quadruple from a regular vertex"}, "Generate",
+           "What the selected vertex becomes."),
+      Int("direction", 0, 0, kMaxDirection, "Direction",
+          "Neighbour index, counted counter-clockwise from the neighbour of smallest index."),
+      Int("spacing", 2, 0, 100000, "Spacing", "Steps the generated 5-7 pair moves away."),
+      RelaxAfterEditing(),
+      Colorize(),
+  };
+  f.apply = ApplyGenerate;
+  c.push_back(f);
+
+  f = FilterSpec();
+  f.id = kAutomaticReduction;
+  f.name = "Irregular Vertices: Automatic Reduction";
+  f.pythonName = "meshing_irregular_automatic_reduction";
+  f.classes = kRemeshing | kSelection;
+  f.info =
+      "Removes as many irregular vertices as the quality limits allow, with the paper's operations only (what its "
+      "designers did by hand): type splitting into v5/v7 (sec. 6.3), triple and quadruple removals where they apply "
+      "(sec. 6.2), 5-7 pairs moved to the nearest irregular vertex or gliding straight on until they cancel (sec. "
+      "7.1-7.2), and stretched 5-7 pairs split into two adjacent pairs that are cancelled in turn. Every edit is "
+      "relaxed locally and undone if it leaves a triangle under the minimum angle or the input surface by more than "
+      "the Hausdorff budget; the whole mesh is relaxed at the end. The budget bounds the result: it is measured at "
+      "the end, and a run that overshoots is redone with stricter checks (at worst every edit is undone). "
+      "Optionally remeshes isotropically first. Deterministic. Logs and returns counts by valence, edits, triangle "
+      "quality, Hausdorff distance and time.";
+  f.params = {
+      Percentage("remeshEdgeLength", 0, "Remesh first: target edge length",
+                 "If > 0, the mesh is first remeshed isotropically to this edge length (vcglib's IsotropicRemeshing, "
+                 "as 'Remeshing: Isotropic Explicit Remeshing'), so one run goes from a scan to a clean result. 0 "
+                 "keeps the mesh as it is."),
+      Int("targetCount", 0, 0, 1000000000, "Target irregular count",
+          "Stop once this many irregular vertices remain; 0 removes as many as the limits below allow. A closed "
+          "surface of genus g keeps at least |12 - 12g| (Gauss-Bonnet, eq. 2)."),
+      Float("hausdorffBudget", 0.5, 0, 100, "Hausdorff budget (% of diagonal)",
+            "An edit whose triangles would leave the input surface by more than this (percent of the bounding-box "
+            "diagonal) is undone."),
+      Float("minAngle", 30, 0, 60, "Minimum angle (degrees)",
+            "An edit is undone if, after local relaxation, a triangle around it has a smaller angle than this (unless "
+            "one already had before). This keeps the irregular vertices the surface needs (v5 on tips, v7 in "
+            "saddles)."),
+      Int("maxTravel", 12, 1, 100000, "Pair travel (steps)",
+          "How far a 5-7 pair moves toward another irregular vertex to cancel with it (straight glides go up to "
+          "four times farther)."),
+      Enum("protect", 0, {"Nothing", "Selected region untouched", "Selected irregular vertices kept"},
+           "Protect the selection",
+           "Selected region untouched: no edit changes a selected vertex or a face around one. Selected irregular "
+           "vertices kept: they stay where they are with their valence."),
+      Enum("relaxation", 0, {"Local", "Global"}, "Final relaxation",
+           "After the edits the whole mesh is relaxed: local sweeps, or the global solve of eq. 5 followed by local "
+           "sweeps (the global result is kept only if it does not lower the smallest angle). Every edit is relaxed "
+           "locally as it is made."),
+      Float("timeLimit", 60, 0, 1e7, "Time limit (seconds)",
+            "Editing stops after this long; what was done is kept, relaxed and checked against the Hausdorff "
+            "budget. 0: no limit (the result then does not depend on the machine's speed)."),
+      Colorize(),
+  };
+  f.apply = ApplyAutomaticReduction;
+  c.push_back(f);
+  return c;
+}
+
+}  // namespace
+
+const std::vector<FilterSpec>& Catalog() {
+  static const std::vector<FilterSpec> catalog = MakeCatalog();
+  return catalog;
+}
+
+}  // namespace filter_irregular

@@ -1,0 +1,87 @@
+// filter_irregular: MeshLab 2020.09 adapter. Parameters become RichParameters (RichAbsPerc for
+// lengths, RichPoint3f for points); a refusal sets errorMessage (the GUI's message box) and
+// logs the reason (meshlabserver prints the log but not errorMessage, and exits with 255); the
+// output values are logged on one line ("Irregular Vertices: returned: key=value ...").
+#include "filter_irregular_plugin.h"
+
+#include "../adapter_shared.h"
+#include "../core/filter_spec.h"
+
+namespace fi = filter_irregular;
+
+FilterIrregularPlugin::FilterIrregularPlugin() {
+  for (const fi::FilterSpec& f : fi::Catalog()) typeList << f.id;
+  for (FilterIDType t : types()) actionList << new QAction(filterName(t), this);
+}
+
+QString FilterIrregularPlugin::pluginName() const { return "FilterIrregular"; }
+
+QString FilterIrregularPlugin::filterName(FilterIDType id) const {
+  const fi::FilterSpec* f = fi::FindFilter(id);
+  return f ? QString::fromStdString(f->name) : QString();
+}
+
+QString FilterIrregularPlugin::filterInfo(FilterIDType id) const {
+  const fi::FilterSpec* f = fi::FindFilter(id);
+  return f ? QString::fromStdString(f->info) : QString();
+}
+
+MeshFilterInterface::FilterClass FilterIrregularPlugin::getClass(QAction* a) {
+  return FilterClass(fi::FindFilter(ID(a))->classes);
+}
+
+int FilterIrregularPlugin::getRequirements(QAction*) {
+  return MeshModel::MM_FACEFACETOPO | MeshModel::MM_VERTFACETOPO;
+}
+
+int FilterIrregularPlugin::getPreConditions(QAction*) const { return MeshModel::MM_FACENUMBER; }
+
+int FilterIrregularPlugin::postCondition(QAction* a) const {
+  return fi::PostConditionOf<MeshModel>(*fi::FindFilter(ID(a)));
+}
+
+void FilterIrregularPlugin::initParameterSet(QAction* a, MeshModel& m, RichParameterList& par) {
+  for (const fi::ParamSpec& p : fi::FindFilter(ID(a))->params) {
+    const QString name = QString::fromStdString(p.name), label = QString::fromStdString(p.label),
+                  help = QString::fromStdString(p.help);
+    switch (p.type) {
+      case fi::ParamType::Bool: par.addParam(RichBool(name, p.defaultValue != 0, label, help)); break;
+      case fi::ParamType::Int: par.addParam(RichInt(name, int(p.defaultValue), label, help)); break;
+      case fi::ParamType::Float: par.addParam(RichFloat(name, float(p.defaultValue), label, help)); break;
+      case fi::ParamType::Enum: {
+        QStringList values;
+        for (const std::string& s : p.enumValues) values << QString::fromStdString(s);
+        par.addParam(RichEnum(name, int(p.defaultValue), values, label, help));
+        break;
+      }
+      case fi::ParamType::Percentage:
+        par.addParam(RichAbsPerc(name, float(p.defaultValue), 0.f, m.cm.bbox.Diag(), label, help));
+        break;
+      case fi::ParamType::Point3: par.addParam(RichPoint3f(name, Point3m(0, 0, 0), label, help)); break;
+    }
+  }
+}
+
+bool FilterIrregularPlugin::applyFilter(QAction* a, MeshDocument& md, const RichParameterList& par,
+                                        vcg::CallBackPos* cb) {
+  const fi::FilterSpec& spec = *fi::FindFilter(ID(a));
+  MeshModel* mm = md.mm();
+  fi::FilterOutcome out;
+  if (mm == nullptr) {
+    out = fi::FilterOutcome::Refuse("There is no current mesh.");
+  } else {
+    fi::MeshModelContext<MeshModel> ctx(*mm, cb, [this](fi::LogLevel level, const std::string& line) {
+      Log(level == fi::LogLevel::Warning ? GLLogStream::WARNING : GLLogStream::FILTER, "%s", line.c_str());
+    });
+    out = fi::ApplyFilter(spec, ctx, fi::ReadParams(spec, par));
+  }
+  if (!out.ok) {
+    errorMessage = QString::fromStdString(out.reason);
+    Log(GLLogStream::WARNING, "Irregular Vertices: refused: %s", out.reason.c_str());
+    return false;
+  }
+  Log("Irregular Vertices: returned: %s", fi::OutputValuesText(out).c_str());
+  return true;
+}
+
+MESHLAB_PLUGIN_NAME_EXPORTER(FilterIrregularPlugin)
