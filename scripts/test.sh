@@ -8,9 +8,11 @@ here=$(cd "$(dirname "$0")/.." && pwd)
 bash "$here/scripts/build.sh"
 (cd "$here/build" && ctest --output-on-failure -j 2)
 
-# Sanitizers: unit tests only (the plugin runs inside Debian's un-instrumented meshlabserver).
+# Sanitizers: unit tests and the randomized run (the plugins run inside un-instrumented MeshLab
+# hosts), compiled against MeshLab 2025.07's vcglib, so vcg_ext/ is tested on both vcglibs.
 asan="$here/build-asan"
-cmake -S "$here" -B "$asan" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DFI_BUILD_PLUGIN=OFF -DFI_BUILD_BENCH=OFF \
+cmake -S "$here" -B "$asan" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DFI_BUILD_PLUGIN=OFF -DFI_BUILD_PLUGIN_2025=OFF \
+  -DFI_BUILD_BENCH=OFF -DFI_VCGLIB_DIR="$here/.deps/meshlab2025-src/src/vcglib" \
   -DCMAKE_CXX_FLAGS="-O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" \
   >/dev/null
 cmake --build "$asan" -j "$(nproc)"
