@@ -28,8 +28,7 @@ enum ReductionStop {
   kStopTargetReached = 1, ///< targetCount irregular vertices or fewer remain
   kStopTimeLimit = 2,     ///< timeLimit reached: what was done is kept
   kStopAllUndone = 3,     ///< every run overshot the Hausdorff budget: all edits undone
-  kStopInterrupted = 4,   ///< the progress callback asked to stop
-};
+};  // An interrupted run (GUI progress cancelled) is a refusal: the mesh is given back unchanged.
 
 namespace {
 /// Per-vertex frozen flags from the selection (empty: nothing protected).
@@ -161,7 +160,6 @@ FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par
 
   int stop = kStopNoMoreEdits;
   if (rep.allUndone) stop = kStopAllUndone;
-  else if (rep.interrupted) stop = kStopInterrupted;
   else if (rep.timeLimitReached) stop = kStopTimeLimit;
   else if (opt.targetCount > 0 && rep.irregularAfter <= opt.targetCount) stop = kStopTargetReached;
   out.SetBool("remeshed", remeshLength > 0);
