@@ -70,5 +70,7 @@ echo "test_wheel: built $(basename "$wheel") ($(du -k "$wheel" | cut -f1) KiB) a
 "${pip[@]}" install -q "${offline[@]}" "$wheel"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-(cd "$work" && env -u FILTER_IRREGULAR_PLUGIN "$venv/bin/python" -I "$here/tests/wheel/smoke_wheel.py" "$mesh")
+expected=$(sed -n 's/^project(filter_irregular VERSION \([0-9.]*\).*/\1/p' "$here/CMakeLists.txt")
+(cd "$work" && env -u FILTER_IRREGULAR_PLUGIN FI_EXPECTED_VERSION="$expected" \
+  "$venv/bin/python" -I "$here/tests/wheel/smoke_wheel.py" "$mesh")
 echo "test_wheel: ok in $((SECONDS - t0)) s"

@@ -15,7 +15,25 @@ import os
 
 import pymeshlab
 
-__version__ = "0.2.0"
+
+
+def _version():
+    """The installed distribution's version (the wheel carries CMakeLists.txt's project
+    VERSION); from a source tree, that VERSION itself."""
+    from importlib.metadata import PackageNotFoundError, version
+    try:
+        return version("pymeshlab-irregular")
+    except PackageNotFoundError:
+        import re
+        cmake = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "CMakeLists.txt")
+        try:
+            with open(cmake) as f:
+                return re.search(r"project\(filter_irregular VERSION ([0-9.]+)", f.read()).group(1)
+        except (OSError, AttributeError):
+            return "unknown"
+
+
+__version__ = _version()
 
 PLUGIN_ENV = "FILTER_IRREGULAR_PLUGIN"
 PLUGIN_FILE = "libfilter_irregular.so"

@@ -56,9 +56,12 @@ def main():
     check(os.environ.get(pymeshlab_irregular.PLUGIN_ENV) is None, "%s unset" % pymeshlab_irregular.PLUGIN_ENV)
     plugin = pymeshlab_irregular.plugin_path()
     check(os.path.dirname(plugin) == pkg_dir, "plugin inside the package: %s" % plugin)
+    # The version the project declares (CMakeLists.txt), passed in by scripts/test_wheel.sh.
+    expected = os.environ["FI_EXPECTED_VERSION"]
     dist_version = importlib.metadata.version("pymeshlab-irregular")
-    check(dist_version == pymeshlab_irregular.__version__,
-          "wheel version %s == __version__ %s" % (dist_version, pymeshlab_irregular.__version__))
+    check(dist_version == expected and pymeshlab_irregular.__version__ == expected,
+          "wheel version %s and __version__ %s == CMakeLists.txt's %s"
+          % (dist_version, pymeshlab_irregular.__version__, expected))
     check(importlib.metadata.version("pymeshlab") == "2025.7.post1", "pymeshlab 2025.7.post1")
 
     # Before load(): the plugin's libraries resolve to pymeshlab's own (RUNPATH), not the system's.
