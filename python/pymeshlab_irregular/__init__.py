@@ -56,6 +56,12 @@ def load(path=None):
     if _loaded is not None:
         return list(_loaded)
     before = set(pymeshlab.filter_list())
+    # Installed into pymeshlab's own plugin folder (cmake --install --component meshlab2025),
+    # pymeshlab loaded it at import and bound its filters already.
+    present = sorted(n for n in before if "irregular" in n and hasattr(pymeshlab.MeshSet, n))
+    if "compute_irregular_vertex_analysis" in present and path is None:
+        _loaded = present
+        return list(present)
     pymeshlab.load_plugin(path or plugin_path())
     names = sorted(set(pymeshlab.filter_list()) - before)
     if not names:
