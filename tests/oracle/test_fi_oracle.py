@@ -1,0 +1,209 @@
+"""Self-checks of the oracle (fi_oracle) alone, no MeshLab: topology on synthetic meshes with
+known answers and on corpus meshes of known genus, ordered one-rings, the defective meshes,
+the exact Hausdorff distance against brute force, angles, curvature signs."""
+import os
+import sys
+
+import numpy as np
+import pytest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+import fi_oracle as fo  # noqa: E402
+
+SOURCE = os.environ.get("FI_SOURCE_DIR") or os.path.abspath(os.path.join(HERE, "..", ".."))
+DATA = os.environ.get("FI_DATA_DIR") or os.path.join(SOURCE, ".deps", "data", "meshes")
+
+
+def corpus(name):
+    """A corpus OFF triangle mesh as a Tri (a missing file fails the test)."""
+    path = os.path.join(DATA, name)
+    if not os.path.isfile(path):
+        pytest.fail("corpus mesh %s missing in %s (run scripts/setup.sh)" % (name, DATA), pytrace=False)
+    with open(path) as f:
+        rows = [s for s in (line.split("#")[0].split() for line in f) if s]
+    assert rows[0][0] == "OFF"
+    head, body = (rows[0][1:], 1) if len(rows[0]) > 1 else (rows[1], 2)
+    nv, nf = int(head[0]), int(head[1])
+    v = np.array([r[:3] for r in rows[body:body + nv]], dtype=np.float64)
+    f = np.array([r[1:4] for r in rows[body + nv:body + nv + nf]], dtype=np.int64)
+    assert all(r[0] == "3" for r in rows[body + nv:body + nv + nf])
+    return fo.Tri(v, f)
+
+
+def test_bunny():
+    m = corpus("bunny00.off")
+    assert m.vertices.shape == (37706, 3) and m.faces.shape == (75408, 3)
+    assert fo.is_edge_manifold(m) and fo.is_consistently_oriented(m)
+    assert fo.euler_characteristic(m) == 2
+    assert fo.gauss_bonnet_sum(m) == 6 * fo.euler_characteristic(m) == 12
+    assert fo.boundary_loop_count(m) == 0 and fo.component_count(m) == 1 and fo.genus(m) == 0
+    assert fo.valences(m).sum() == 2 * len(fo.unique_edges(m)[0])
+    s = fo.summary(m)
+    # the README's numbers for the bunny
+    assert (s["irregular"], s["vertices"]) == (19715, 37706)
+    assert s["valence_histogram"].tolist() == [0, 0, 0, 0, 1080, 8951, 17991, 8340, 1276, 65, 3]
+    assert (s["v4"], s["v5"], s["v7"], s["v8"], s["v9"]) == (1080, 8951, 8340, 1276, 68)
+
+
+@pytest.mark.parametrize("name,g", [("knot1.off", 1), ("elephant.off", 3)])
+def test_genus_of_corpus_meshes(name, g):
+    m = corpus(name)
+    assert fo.boundary_loop_count(m) == 0
+    assert fo.genus(m) == g
+    assert fo.gauss_bonnet_sum(m) == 6 * fo.euler_characteristic(m) == 6 * (2 - 2 * g)
+
+
+def test_mesh_with_border():
+    m = corpus("mesh_with_border.off")
+    s = fo.summary(m)
+    assert fo.boundary_vertex_mask(m).any() and s["boundary_loops"] >= 1
+    assert s["gauss_bonnet_holds"]
+    # equivalent valence: boundary valence + 2
+    eq = fo.equivalent_valences(m)
+    b = fo.boundary_vertex_mask(m)
+    assert np.array_equal(eq[b], fo.valences(m)[b] + 2) and np.array_equal(eq[~b], fo.valences(m)[~b])
+    assert s["boundary_valence_histogram"].sum() == b.sum()
+    assert s["valence_histogram"].sum() + b.sum() == len(m.vertices)
+
+
+def test_icosahedron():
+    m = fo.icosahedron()
+    assert (fo.valences(m) == 5).all() and fo.irregular_mask(m).all()
+    assert fo.euler_characteristic(m) == 2 and fo.gauss_bonnet_sum(m) == 12 and fo.genus(m) == 0
+    assert fo.is_edge_manifold(m) and fo.is_vertex_manifold(m) and fo.is_consistently_oriented(m)
+    c = fo.counts(m, "_x")
+    assert c["v5_x"] == 12 and c["irregular_x"] == 12 and c["valence_histogram_x"].tolist() == [0] * 5 + [12]
+    assert (fo.expected_rgb(m) == (40, 80, 230)).all()
+
+
+def test_grid_patch():
+    m = fo.grid(4)
+    val, bnd = fo.valences(m), fo.boundary_vertex_mask(m)
+    assert bnd.sum() == 16 and fo.boundary_loop_count(m) == 1
+    assert fo.euler_characteristic(m) == 1 and fo.gauss_bonnet_sum(m) == 6 and fo.genus(m) == 0
+    assert (val[~bnd] == 6).all()
+    # Only the corners are irregular: valence 2 or 3 on the boundary (4 is regular there).
+    corners = [0, 4, 20, 24]
+    assert sorted(np.nonzero(fo.irregular_mask(m))[0]) == corners
+    assert sorted(val[corners]) == [2, 2, 3, 3]
+    s = fo.summary(m)
+    # counted by equivalent valence (boundary + 2): valence 2 -> v4, valence 3 -> v5
+    assert (s["v3"], s["v4"], s["v5"], s["irregular"]) == (0, 2, 2, 4)
+
+
+def test_one_ring_order_and_neighbour_numbering():
+    m = fo.grid(4)
+    c = 12  # the centre (2, 2): neighbours counter-clockwise seen from +z
+    ring = fo.one_ring(m, c)
+    angles = [np.arctan2(*(m.vertices[x, 1::-1] - m.vertices[c, 1::-1])) for x in ring]
+    steps = np.diff(np.unwrap(angles + angles[:1]))
+    assert len(ring) == 6 and (steps > 0).all()  # turning counter-clockwise
+    assert fo.neighbour_from(m, c, 0) == min(ring)
+    assert fo.neighbour_from(m, c, 1) == ring[(ring.index(min(ring)) + 1) % 6]
+    assert fo.neighbour_from(m, c, 6) == min(ring)
+    assert fo.neighbour_from(m, c, 2, ref=ring[3]) == ring[5]
+    with pytest.raises(ValueError):
+        fo.one_ring(m, 0)  # a boundary vertex
+    assert fo.opposite_vertices(m, 12, 13) == sorted(set(fo.one_ring(m, 12)) & set(fo.adjacency_lists(m)[13]))
+    d = fo.hop_distances(m, [0])
+    assert d[0] == 0 and d[24] == 4 and d[6] == 1
+
+
+def test_unreferenced_vertex_and_components():
+    m = fo.icosahedron()
+    two = fo.Tri(np.vstack([m.vertices, m.vertices + 10, [[0, 0, 0]]]), np.vstack([m.faces, m.faces + 12]))
+    assert fo.valences(two)[-1] == 0 and not fo.irregular_mask(two)[-1]
+    assert fo.euler_characteristic(two) == 4 and fo.component_count(two) == 2
+    with pytest.raises(ValueError):
+        fo.genus(two)
+    assert "genus" not in fo.summary(two)
+
+
+def test_bad_meshes_are_what_they_say():
+    bad = fo.bad_meshes()
+    tri = {k: fo.Tri(v, f) for k, (v, f, _) in bad.items() if k != "polygons"}
+    assert not fo.is_edge_manifold(tri["non-manifold edge"])
+    assert fo.is_edge_manifold(tri["non-manifold vertex"]) and not fo.is_vertex_manifold(tri["non-manifold vertex"])
+    assert fo.duplicate_vertex_mask(tri["duplicated vertices"]).sum() == 2
+    assert not fo.referenced_mask(tri["unreferenced vertices"]).all()
+    z = tri["zero-area face"]
+    assert fo.degenerate_face_mask(z).tolist() == [True] + [False] * 7
+    assert fo.is_edge_manifold(z) and fo.is_vertex_manifold(z) and not fo.duplicate_vertex_mask(z).any()
+    assert fo.degenerate_face_mask(tri["repeated vertex in a face"])[-1]
+    assert not fo.is_consistently_oriented(tri["inconsistent orientation"])
+    assert all(len(p) == 4 for p in bad["polygons"][1])
+    with pytest.raises(AssertionError):
+        fo.check_invariants(z)
+
+
+def test_pymeshlab_like_objects():
+    class FakeMesh:  # pymeshlab.Mesh's accessors
+        def vertex_matrix(self):
+            return fo.octahedron().vertices
+
+        def face_matrix(self):
+            return fo.octahedron().faces.astype(np.int32)
+
+    assert fo.summary(FakeMesh())["v4"] == 6
+    assert fo.summary((fo.octahedron().vertices, fo.octahedron().faces))["euler_characteristic"] == 2
+
+
+# ------------------------------------------------------------------ geometry
+def brute_distance(points, m):
+    """Point-to-surface distance by dense sampling of every triangle (an upper bound that
+    converges to the true distance)."""
+    tri = m.vertices[m.faces]
+    u, v = np.meshgrid(np.linspace(0, 1, 41), np.linspace(0, 1, 41))
+    keep = u + v <= 1
+    u, v = u[keep], v[keep]
+    s = tri[:, None, 0] * (1 - u - v)[None, :, None] + tri[:, None, 1] * u[None, :, None] + tri[:, None, 2] * v[None, :, None]
+    s = s.reshape(-1, 3)
+    return np.array([np.linalg.norm(s - p, axis=1).min() for p in points])
+
+
+def test_closest_point_distances_against_brute_force():
+    m = fo.icosahedron()
+    rng = np.random.default_rng(3)
+    pts = rng.normal(size=(60, 3)) * 2
+    d = fo.closest_point_distances(pts, m, candidates=20)
+    b = brute_distance(pts, m)
+    assert (d <= b + 1e-9).all() and np.allclose(d, b, atol=0.03)
+    # points on the surface are at distance 0
+    on = fo.surface_samples(m)
+    assert fo.closest_point_distances(on, m).max() < 1e-12
+
+
+def test_hausdorff_of_known_pairs():
+    m = fo.grid(4)
+    lifted = fo.Tri(m.vertices + (0, 0, 0.25), m.faces)
+    ab, ba = fo.hausdorff(m, lifted)
+    assert ab == pytest.approx(0.25) and ba == pytest.approx(0.25)
+    assert fo.hausdorff_percent(m, m) < 1e-12
+    bump = fo.Tri(m.vertices.copy(), m.faces)
+    bump.vertices[12, 2] = 1.0  # one interior vertex raised: the farthest point is the tip
+    ab, ba = fo.hausdorff(m, bump)
+    assert ba == pytest.approx(1.0) and ab < ba
+    assert fo.diagonal(m) == pytest.approx(np.sqrt(32))
+
+
+def test_angles_areas_edge_length():
+    m = fo.grid(2)
+    ang = fo.triangle_angles(m)
+    assert np.allclose(np.sort(ang, axis=1), [45, 45, 90])
+    assert fo.shape_measures(m) == {"min_angle": pytest.approx(45), "mean_min_angle": pytest.approx(45),
+                                    "share_below_30": 0.0}
+    assert np.allclose(fo.triangle_areas(m), 0.5)
+    ico = fo.icosahedron()
+    assert np.allclose(fo.triangle_angles(ico), 60)
+    assert fo.mean_edge_length(ico) == pytest.approx(2.0)
+    # equilateral triangles of edge L: area sqrt(3)/4 L^2, two per vertex
+    assert fo.edge_length_for(ico, 10) == pytest.approx(np.sqrt(2 * fo.triangle_areas(ico).sum() / (np.sqrt(3) * 10)))
+
+
+def test_gaussian_curvature_sign():
+    ico = fo.icosahedron()
+    assert (fo.gaussian_curvature_near(ico, ico.vertices, 0.1) > 0).all()
+    m = fo.grid(6)
+    m.vertices[:, 2] = (m.vertices[:, 0] - 3) ** 2 - (m.vertices[:, 1] - 3) ** 2  # a saddle
+    assert fo.gaussian_curvature_near(m, [(3, 3, 0)], 1.1)[0] < 0
