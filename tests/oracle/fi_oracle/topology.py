@@ -12,7 +12,7 @@ import numpy as np
 __all__ = [
     "Tri", "as_mesh", "edges", "unique_edges", "referenced_mask", "valences", "boundary_vertex_mask",
     "boundary_mask", "equivalent_valences", "euler_characteristic", "boundary_loop_count", "component_count",
-    "genus", "is_edge_manifold", "is_vertex_manifold", "is_consistently_oriented", "irregular_mask",
+    "genus", "is_edge_manifold", "fan_counts", "is_vertex_manifold", "is_consistently_oriented", "irregular_mask",
     "gauss_bonnet_sum", "check_invariants", "summary", "counts", "histogram", "one_ring", "neighbour_from",
     "adjacent", "hop_distances", "adjacency_lists", "opposite_vertices", "degenerate_face_mask",
     "duplicate_vertex_mask",
@@ -150,20 +150,33 @@ def is_edge_manifold(mesh):
     return bool((unique_edges(mesh)[1] <= 2).all())
 
 
-def is_vertex_manifold(mesh):
-    """Every referenced vertex has one fan of faces: its link (the edges opposite to it) is
-    connected (a path on the boundary, a cycle inside)."""
+def fan_counts(mesh):
+    """Number of fans of faces around every vertex (faces joined through the edges at the
+    vertex): 1 on a manifold mesh, more where separate fans meet at one vertex, 0 unreferenced.
+    Graph: one node per (vertex, neighbour) pair; each face corner (v; b, c) joins (v, b) and
+    (v, c); the fans of v are the connected components among v's nodes (scipy's csgraph)."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
     m = as_mesh(mesh)
+    n = max(len(m.vertices), 1)
     f = m.faces
-    for v in np.nonzero(referenced_mask(m))[0]:
-        rows = f[(f == v).any(axis=1)]
-        link = np.array([[x for x in r if x != v] for r in rows.tolist() if list(r).count(v) == 1])
-        if len(link) == 0:
-            continue
-        verts, local = np.unique(link, return_inverse=True)
-        if len(np.unique(_components(len(verts), local.reshape(-1, 2)))) != 1:
-            return False
-    return True
+    v = f.ravel()
+    b = np.roll(f, -1, axis=1).ravel()
+    c = np.roll(f, -2, axis=1).ravel()
+    keys, inv = np.unique(np.concatenate([v * n + b, v * n + c]), return_inverse=True)
+    inv = inv.ravel()
+    k = len(v)
+    g = coo_matrix((np.ones(k), (inv[:k], inv[k:])), shape=(len(keys), len(keys)))
+    _, label = connected_components(g, directed=False)
+    owner = keys // n
+    pairs = np.unique(np.stack([owner, label], axis=1), axis=0)
+    return np.bincount(pairs[:, 0], minlength=len(m.vertices))
+
+
+def is_vertex_manifold(mesh):
+    """Every referenced vertex has one fan of faces."""
+    fans = fan_counts(mesh)
+    return bool((fans[referenced_mask(mesh)] == 1).all())
 
 
 def is_consistently_oriented(mesh):
