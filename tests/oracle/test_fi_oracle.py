@@ -207,3 +207,15 @@ def test_gaussian_curvature_sign():
     m = fo.grid(6)
     m.vertices[:, 2] = (m.vertices[:, 0] - 3) ** 2 - (m.vertices[:, 1] - 3) ** 2  # a saddle
     assert fo.gaussian_curvature_near(m, [(3, 3, 0)], 1.1)[0] < 0
+
+
+def test_crease_vertices():
+    cube = fo.Tri([(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)],
+                  [(0, 2, 1), (0, 3, 2), (4, 5, 6), (4, 6, 7), (0, 1, 5), (0, 5, 4), (1, 2, 6), (1, 6, 5),
+                   (2, 3, 7), (2, 7, 6), (3, 0, 4), (3, 4, 7)])
+    assert fo.is_consistently_oriented(cube) and fo.gauss_bonnet_sum(cube) == 12
+    assert fo.crease_vertex_mask(cube, 60).all()  # every corner is on a 90 degree edge
+    assert not fo.crease_vertex_mask(cube, 95).any()
+    assert not fo.crease_vertex_mask(fo.grid(3), 1).any()  # flat
+    n = fo.face_normals(fo.grid(1))
+    assert np.allclose(n, [(0, 0, 1), (0, 0, 1)])

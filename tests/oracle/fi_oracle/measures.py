@@ -7,7 +7,7 @@ from .topology import as_mesh, referenced_mask
 
 __all__ = ["closest_point_distances", "surface_samples", "hausdorff", "hausdorff_percent", "diagonal",
            "triangle_areas", "edge_length_for", "mean_edge_length", "triangle_angles", "shape_measures",
-           "gaussian_curvature_near"]
+           "gaussian_curvature_near", "face_normals", "crease_vertex_mask"]
 
 
 def closest_point_distances(points, mesh, candidates=12):
@@ -164,3 +164,30 @@ def gaussian_curvature_near(mesh, points, radius):
         idx = tree.query_ball_point(q, radius)
         out.append(defect[idx].sum() / max(vertex_area[idx].sum(), 1e-300) if idx else 0.0)
     return np.array(out)
+
+
+def face_normals(mesh):
+    """Unit normals of the faces (orientation from the vertex order)."""
+    m = as_mesh(mesh)
+    p = m.vertices[m.faces]
+    n = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
+    return n / np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-300)
+
+
+def crease_vertex_mask(mesh, angle_deg):
+    """Vertices on an edge whose two faces' normals differ by more than angle_deg (the
+    dihedral angle MeshLab's feature-angle parameters compare)."""
+    m = as_mesh(mesh)
+    f = m.faces
+    n = face_normals(m)
+    e = np.sort(np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]]), axis=1)
+    owner = np.tile(np.arange(len(f)), 3)
+    key = e[:, 0] * len(m.vertices) + e[:, 1]
+    order = np.argsort(key, kind="stable")
+    key, e, owner = key[order], e[order], owner[order]
+    same = np.nonzero(key[1:] == key[:-1])[0]  # consecutive pairs: the two faces of an edge
+    cos = (n[owner[same]] * n[owner[same + 1]]).sum(axis=1)
+    sharp = np.degrees(np.arccos(np.clip(cos, -1, 1))) > angle_deg
+    out = np.zeros(len(m.vertices), dtype=bool)
+    out[e[same[sharp]].ravel()] = True
+    return out
