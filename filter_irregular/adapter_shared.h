@@ -7,6 +7,7 @@
 #include <string>
 
 #include <QString>
+#include <QStringList>
 
 #include "core/filter_spec.h"
 #include "core/mesh_type.h"
@@ -33,6 +34,31 @@ ParamValues ReadParams(const FilterSpec& spec, const RichParameterListT& par) {
     }
   }
   return v;
+}
+
+/// Adds the spec's parameters to MeshLab's list. Bool, Int, Float and Enum parameters have the
+/// same classes in both APIs; lengths and points do not, so the adapter passes their makers:
+/// percentage(name, default, max, label, help) and point(name, label, help).
+template <class RichParameterListT, class MakePercentage, class MakePoint>
+void AddParams(const FilterSpec& spec, double diagonal, RichParameterListT& par, MakePercentage percentage,
+               MakePoint point) {
+  for (const ParamSpec& p : spec.params) {
+    const QString name = QString::fromStdString(p.name), label = QString::fromStdString(p.label),
+                  help = QString::fromStdString(p.help);
+    switch (p.type) {
+      case ParamType::Bool: par.addParam(RichBool(name, p.defaultValue != 0, label, help)); break;
+      case ParamType::Int: par.addParam(RichInt(name, int(p.defaultValue), label, help)); break;
+      case ParamType::Float: par.addParam(RichFloat(name, Scalarm(p.defaultValue), label, help)); break;
+      case ParamType::Enum: {
+        QStringList values;
+        for (const std::string& s : p.enumValues) values << QString::fromStdString(s);
+        par.addParam(RichEnum(name, int(p.defaultValue), values, label, help));
+        break;
+      }
+      case ParamType::Percentage: par.addParam(percentage(name, p.defaultValue, diagonal, label, help)); break;
+      case ParamType::Point3: par.addParam(point(name, label, help)); break;
+    }
+  }
 }
 
 /// MeshModel's data mask for the components a filter asks for (same MM_* in both APIs).

@@ -41,25 +41,14 @@ int FilterIrregularPlugin::postCondition(QAction* a) const {
 }
 
 void FilterIrregularPlugin::initParameterSet(QAction* a, MeshModel& m, RichParameterList& par) {
-  for (const fi::ParamSpec& p : fi::FindFilter(ID(a))->params) {
-    const QString name = QString::fromStdString(p.name), label = QString::fromStdString(p.label),
-                  help = QString::fromStdString(p.help);
-    switch (p.type) {
-      case fi::ParamType::Bool: par.addParam(RichBool(name, p.defaultValue != 0, label, help)); break;
-      case fi::ParamType::Int: par.addParam(RichInt(name, int(p.defaultValue), label, help)); break;
-      case fi::ParamType::Float: par.addParam(RichFloat(name, float(p.defaultValue), label, help)); break;
-      case fi::ParamType::Enum: {
-        QStringList values;
-        for (const std::string& s : p.enumValues) values << QString::fromStdString(s);
-        par.addParam(RichEnum(name, int(p.defaultValue), values, label, help));
-        break;
-      }
-      case fi::ParamType::Percentage:
-        par.addParam(RichAbsPerc(name, float(p.defaultValue), 0.f, m.cm.bbox.Diag(), label, help));
-        break;
-      case fi::ParamType::Point3: par.addParam(RichPoint3f(name, Point3m(0, 0, 0), label, help)); break;
-    }
-  }
+  fi::AddParams(
+      *fi::FindFilter(ID(a)), m.cm.bbox.Diag(), par,
+      [](const QString& name, double def, double max, const QString& label, const QString& help) {
+        return RichAbsPerc(name, float(def), 0.f, float(max), label, help);
+      },
+      [](const QString& name, const QString& label, const QString& help) {
+        return RichPoint3f(name, Point3m(0, 0, 0), label, help);
+      });
 }
 
 bool FilterIrregularPlugin::applyFilter(QAction* a, MeshDocument& md, const RichParameterList& par,

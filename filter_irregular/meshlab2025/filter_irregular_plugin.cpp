@@ -49,25 +49,14 @@ int FilterIrregularPlugin::postCondition(const QAction* a) const {
 
 RichParameterList FilterIrregularPlugin::initParameterList(const QAction* a, const MeshModel& m) {
   RichParameterList par;
-  for (const fi::ParamSpec& p : fi::FindFilter(int(ID(a)))->params) {
-    const QString name = QString::fromStdString(p.name), label = QString::fromStdString(p.label),
-                  help = QString::fromStdString(p.help);
-    switch (p.type) {
-      case fi::ParamType::Bool: par.addParam(RichBool(name, p.defaultValue != 0, label, help)); break;
-      case fi::ParamType::Int: par.addParam(RichInt(name, int(p.defaultValue), label, help)); break;
-      case fi::ParamType::Float: par.addParam(RichFloat(name, Scalarm(p.defaultValue), label, help)); break;
-      case fi::ParamType::Enum: {
-        QStringList values;
-        for (const std::string& s : p.enumValues) values << QString::fromStdString(s);
-        par.addParam(RichEnum(name, int(p.defaultValue), values, label, help));
-        break;
-      }
-      case fi::ParamType::Percentage:
-        par.addParam(RichPercentage(name, Scalarm(p.defaultValue), 0, m.cm.bbox.Diag(), label, help));
-        break;
-      case fi::ParamType::Point3: par.addParam(RichPosition(name, Point3m(0, 0, 0), label, help)); break;
-    }
-  }
+  fi::AddParams(
+      *fi::FindFilter(int(ID(a))), m.cm.bbox.Diag(), par,
+      [](const QString& name, double def, double max, const QString& label, const QString& help) {
+        return RichPercentage(name, Scalarm(def), 0, Scalarm(max), label, help);
+      },
+      [](const QString& name, const QString& label, const QString& help) {
+        return RichPosition(name, Point3m(0, 0, 0), label, help);
+      });
   return par;
 }
 
