@@ -78,6 +78,8 @@ std::map<std::string, QVariant> FilterIrregularPlugin::applyFilter(const QAction
     log(GLLogStream::WARNING, "Irregular Vertices: refused: " + out.reason);
     throw MLException(QString::fromStdString(out.reason));
   }
+  // The GUI shows no returned map: the values go to the log too, as in the 2020.09 adapter.
+  log("Irregular Vertices: returned: " + fi::OutputValuesText(out));
   postConditionMask = fi::PostConditionOf<MeshModel>(spec);
   std::map<std::string, QVariant> values;
   for (auto& kv : out.values) {
