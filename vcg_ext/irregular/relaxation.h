@@ -154,9 +154,10 @@ typename MeshType::CoordType VertexNormal(const VertexStar<MeshType>& st) {
   return n.Normalize();
 }
 
+/// Live and not on a crease (crease: per-vertex flags, or null for none).
 template <class MeshType>
-bool Movable(MeshType& m, int v, const std::vector<char>& crease) {
-  return !m.vert[size_t(v)].IsD() && !crease[size_t(v)];
+bool Movable(MeshType& m, int v, const std::vector<char>* crease) {
+  return !m.vert[size_t(v)].IsD() && !(crease && size_t(v) < crease->size() && (*crease)[size_t(v)]);
 }
 
 }  // namespace relax_detail
@@ -169,12 +170,10 @@ RelaxReport LocalRelax(MeshType& m, const std::vector<int>& region, const Surfac
   typedef typename MeshType::ScalarType ScalarType;
   auto t0 = std::chrono::steady_clock::now();
   RelaxReport rep;
-  std::vector<char> noCrease;
-  if (!creaseIn) noCrease.assign(m.vert.size(), 0);
-  const std::vector<char>& crease = creaseIn ? *creaseIn : noCrease;
+  // O(region x sweeps): called after every edit, so nothing here may be sized by the mesh.
   for (int it = 0; it < opt.iterations; ++it) {
     for (int v : region) {
-      if (!relax_detail::Movable(m, v, crease)) continue;
+      if (!relax_detail::Movable(m, v, creaseIn)) continue;
       auto* vp = &m.vert[size_t(v)];
       VertexStar<MeshType> st = StarOf<MeshType>(vp);
       if (st.boundary || st.neighbors.empty()) continue;
@@ -214,15 +213,12 @@ RelaxReport GlobalRelax(MeshType& m, const std::vector<int>& region, const Surfa
   typedef Eigen::Triplet<double> T;
   auto t0 = std::chrono::steady_clock::now();
   RelaxReport rep;
-  std::vector<char> noCrease;
-  if (!creaseIn) noCrease.assign(m.vert.size(), 0);
-  const std::vector<char>& crease = creaseIn ? *creaseIn : noCrease;
 
   // Unknowns: (a, b) per free vertex, p = c + a t1 + b t2 in its tangent plane.
   std::vector<int> unknown(m.vert.size(), -1);
   std::vector<int> freeV;
   for (int v : region) {
-    if (!relax_detail::Movable(m, v, crease)) continue;
+    if (!relax_detail::Movable(m, v, creaseIn)) continue;
     VertexStar<MeshType> st = StarOf<MeshType>(&m.vert[size_t(v)]);
     if (st.boundary || st.neighbors.empty()) continue;
     unknown[size_t(v)] = int(freeV.size());
