@@ -1,110 +1,28 @@
-"""Self-checks of the mlpy driver alone (no MeshLab): file reading and writing, the independent
-topology measures, script XML, and the PNG renderer."""
+"""Self-checks of mlpy alone (no MeshLab): PLY/OFF reading and writing, filter-script XML,
+the plugin's returned-values line, the stage lookup, and the PNG renderer that
+scripts/render_png.py uses."""
 import os
 import struct
-import sys
 import xml.etree.ElementTree as ET
 import zlib
 
 import numpy as np
 import pytest
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from mlpy import (DATA, AbsPerc, Color, DynamicFloat, Enum, Filter, Mesh, Param, Point3f,  # noqa: E402
-                  boundary_loop_count, boundary_vertex_mask, component_count, deleted_mask,
-                  euler_characteristic, gauss_bonnet_sum, genus, irregular_mask, is_consistently_oriented,
-                  is_edge_manifold, read_mesh, read_off, read_ply, select_vertices, selected_mask,
-                  valences, write_ply, write_script)
-from mlpy import meshlab  # noqa: E402
-from mlpy.render import draw_legend, draw_title, rasterize, render, write_png  # noqa: E402
-
-
-def corpus(name):
-    path = os.path.join(DATA, name)
-    if not os.path.exists(path):
-        pytest.skip("corpus mesh %s missing (run scripts/setup.sh)" % name)
-    return path
+import fi_oracle as fo
+import mlpy
+from mlpy import (AbsPerc, Enum, Filter, Mesh, Param, Point3f, deleted_mask, parse_returned, read_mesh, read_off,
+                  read_ply, select_vertices, selected_mask, write_ply, write_script)
+from mlpy.render import draw_legend, draw_title, rasterize, render, write_png
 
 
 def icosahedron():
-    t = (1 + 5 ** 0.5) / 2
-    v = [(-1, t, 0), (1, t, 0), (-1, -t, 0), (1, -t, 0), (0, -1, t), (0, 1, t), (0, -1, -t), (0, 1, -t),
-         (t, 0, -1), (t, 0, 1), (-t, 0, -1), (-t, 0, 1)]
-    f = [(0, 11, 5), (0, 5, 1), (0, 1, 7), (0, 7, 10), (0, 10, 11), (1, 5, 9), (5, 11, 4), (11, 10, 2),
-         (10, 7, 6), (7, 1, 8), (3, 9, 4), (3, 4, 2), (3, 2, 6), (3, 6, 8), (3, 8, 9), (4, 9, 5), (2, 4, 11),
-         (6, 2, 10), (8, 6, 7), (9, 8, 1)]
-    return Mesh(v, f)
+    return Mesh(fo.icosahedron().vertices, fo.icosahedron().faces)
 
 
 def grid(n, jitter=0.0, seed=0):
-    """(n+1) x (n+1) vertices on [0, n]^2 in the z = 0 plane, each square split by a diagonal."""
-    ys, xs = np.mgrid[0:n + 1, 0:n + 1]
-    v = np.stack([xs.ravel(), ys.ravel(), np.zeros(xs.size)], axis=1).astype(float)
-    if jitter:  # move interior vertices only, so the outline stays the square
-        inner = (v[:, 0] > 0) & (v[:, 0] < n) & (v[:, 1] > 0) & (v[:, 1] < n)
-        v[inner, :2] += np.random.default_rng(seed).uniform(-jitter, jitter, (inner.sum(), 2))
-    i = (ys[:-1, :-1] * (n + 1) + xs[:-1, :-1]).ravel()
-    f = np.concatenate([np.stack([i, i + 1, i + n + 2], 1), np.stack([i, i + n + 2, i + n + 1], 1)])
-    return Mesh(v, f)
-
-
-# ------------------------------------------------------------------ topology
-def test_bunny_off():
-    m = read_off(corpus("bunny00.off"))
-    assert m.vertices.shape == (37706, 3) and m.faces.shape == (75408, 3)
-    assert m.is_triangle_mesh and m.polygons == []
-    assert is_edge_manifold(m) and is_consistently_oriented(m)
-    assert euler_characteristic(m) == 2
-    assert gauss_bonnet_sum(m) == 6 * euler_characteristic(m) == 12
-    assert boundary_loop_count(m) == 0 and component_count(m) == 1 and genus(m) == 0
-    assert valences(m).sum() == 2 * len(meshlab.unique_edges(m)[0])
-
-
-@pytest.mark.parametrize("name,g", [("knot1.off", 1), ("elephant.off", 3)])
-def test_genus_of_corpus_meshes(name, g):
-    m = read_off(corpus(name))
-    assert boundary_loop_count(m) == 0
-    assert genus(m) == g
-    assert gauss_bonnet_sum(m) == 6 * euler_characteristic(m) == 6 * (2 - 2 * g)
-
-
-def test_mesh_with_border():
-    m = read_off(corpus("mesh_with_border.off"))
-    assert boundary_vertex_mask(m).any() and boundary_loop_count(m) >= 1
-    assert gauss_bonnet_sum(m) == 6 * euler_characteristic(m)
-
-
-def test_icosahedron():
-    m = icosahedron()
-    assert (valences(m) == 5).all() and irregular_mask(m).all()
-    assert euler_characteristic(m) == 2 and gauss_bonnet_sum(m) == 12 and genus(m) == 0
-    assert is_edge_manifold(m) and is_consistently_oriented(m)
-
-
-def test_grid_patch():
-    m = grid(4)
-    val, bnd = valences(m), boundary_vertex_mask(m)
-    assert bnd.sum() == 16 and boundary_loop_count(m) == 1
-    assert euler_characteristic(m) == 1 and gauss_bonnet_sum(m) == 6 and genus(m) == 0
-    assert (val[~bnd] == 6).all()
-    # Only the corners are irregular: valence 2 or 3 on the boundary (4 is regular there).
-    corners = [0, 4, 20, 24]
-    assert sorted(np.nonzero(irregular_mask(m))[0]) == corners
-    assert sorted(val[corners]) == [2, 2, 3, 3]
-
-
-def test_unreferenced_vertex_and_components():
-    m = icosahedron()
-    two = Mesh(np.vstack([m.vertices, m.vertices + 10, [[0, 0, 0]]]), np.vstack([m.faces, m.faces + 12]))
-    assert valences(two)[-1] == 0 and not irregular_mask(two)[-1]
-    assert euler_characteristic(two) == 4 and component_count(two) == 2
-    with pytest.raises(ValueError):
-        genus(two)
-
-
-def test_non_manifold_edge():
-    m = Mesh(np.eye(3).tolist() + [[1, 1, 1], [0, 0, 0]], [(0, 1, 2), (1, 0, 3), (0, 1, 4)])
-    assert not is_edge_manifold(m)
+    g = fo.grid(n, jitter, seed)
+    return Mesh(g.vertices, g.faces)
 
 
 # ------------------------------------------------------------------ files
@@ -180,24 +98,16 @@ def test_off_comments_colours_polygons(tmp_path):
 # ------------------------------------------------------------------ scripts
 def test_xml_every_param_type(tmp_path):
     names = ["None", "All irregular", "Only valence"]
-    tuples = Filter("Irregular Vertices: Analyze", [
-        ("RichEnum", "select", 1, {"enum": names}), ("RichInt", "valence", 5), ("RichBool", "colorize", True),
-        ("RichFloat", "f", 0.1), ("RichString", "s", 'a<"b"> & c'),
-        ("RichAbsPerc", "ap", 0.01, {"min": 0, "max": 1}), ("RichDynamicFloat", "df", 0.3, {"min": 0, "max": 1}),
-        ("RichColor", "col", (40, 200, 40)), ("RichPoint3f", "pt", (0, 0, 1))])
-    keywords = Filter("Irregular Vertices: Analyze", select=Enum(1, names), valence=5, colorize=True, f=0.1,
-                      s='a<"b"> & c', ap=AbsPerc(0.01, 0, 1), df=DynamicFloat(0.3, 0, 1), col=Color(40, 200, 40),
-                      pt=Point3f(0, 0, 1))
-    assert tuples.xml() == keywords.xml()
-    path = write_script([tuples, select_vertices([3, 12])], str(tmp_path / "s.mlx"))
+    flt = Filter("Irregular Vertices: Analyze", select=Enum(1, names), valence=5, colorize=True, f=0.1,
+                 s='a<"b"> & c', ap=AbsPerc(0.01, 0, 1), pt=Point3f(0, 0, 1))
+    path = write_script([flt, select_vertices([3, 12])], str(tmp_path / "s.mlx"))
     assert open(path).read().startswith("<!DOCTYPE FilterScript>\n<FilterScript>")
     root = ET.parse(path).getroot()
     assert root.tag == "FilterScript"
     first, second = root.findall("filter")
     assert first.get("name") == "Irregular Vertices: Analyze"
     p = {e.get("name"): e.attrib for e in first.findall("Param")}
-    assert [e.get("name") for e in first.findall("Param")] == ["select", "valence", "colorize", "f", "s", "ap",
-                                                               "df", "col", "pt"]
+    assert [e.get("name") for e in first.findall("Param")] == ["select", "valence", "colorize", "f", "s", "ap", "pt"]
     assert p["select"] == {"type": "RichEnum", "name": "select", "value": "1", "enum_cardinality": "3",
                            "enum_val0": "None", "enum_val1": "All irregular", "enum_val2": "Only valence"}
     assert p["valence"]["type"] == "RichInt" and p["valence"]["value"] == "5"
@@ -206,9 +116,6 @@ def test_xml_every_param_type(tmp_path):
     assert p["s"]["type"] == "RichString" and p["s"]["value"] == 'a<"b"> & c'
     assert (p["ap"]["type"], float(p["ap"]["value"]), float(p["ap"]["min"]), float(p["ap"]["max"])) == \
         ("RichAbsPerc", 0.01, 0, 1)
-    assert (p["df"]["type"], float(p["df"]["value"]), float(p["df"]["min"]), float(p["df"]["max"])) == \
-        ("RichDynamicFloat", 0.3, 0, 1)
-    assert [p["col"][k] for k in "rgba"] == ["40", "200", "40", "255"] and "value" not in p["col"]
     assert [float(p["pt"][k]) for k in "xyz"] == [0, 0, 1] and p["pt"]["type"] == "RichPoint3f"
     assert second.get("name") == "Conditional Vertex Selection"
     sp = {e.get("name"): e.attrib for e in second.findall("Param")}
@@ -217,13 +124,47 @@ def test_xml_every_param_type(tmp_path):
     assert Param("RichBool", "b", False).xml() == '<Param type="RichBool" name="b" value="false"/>'
 
 
+def test_every_example_script_parses(tmp_path):
+    """The examples are valid XML whose filters list their parameters (meshlabserver aborts on
+    a missing one)."""
+    for path in sorted(os.listdir(mlpy.EXAMPLES)):
+        root = ET.parse(os.path.join(mlpy.EXAMPLES, path)).getroot()
+        assert root.tag == "FilterScript" and root.findall("filter"), path
+        for f in root.findall("filter"):
+            assert f.findall("Param"), (path, f.get("name"))
+
+
+def test_parse_returned():
+    v = parse_returned("vertices=3200 irregular_percent=10.5 valence_histogram=[0 0 5 2864] "
+                       "gauss_bonnet_holds=true remeshed=false x=-3 y=1e-05")
+    assert v["vertices"] == 3200 and isinstance(v["vertices"], int)
+    assert v["irregular_percent"] == 10.5 and v["gauss_bonnet_holds"] is True and v["remeshed"] is False
+    assert v["valence_histogram"].tolist() == [0, 0, 5, 2864] and v["x"] == -3 and v["y"] == 1e-05
+    log = ("LOG: 2 Irregular Vertices: returned: a=1\nLOG: 2 other\nLOG: 2 Irregular Vertices: returned: a=2\n"
+           "Irregular Vertices: returned: a=1\nIrregular Vertices: returned: a=2\n")
+    r = mlpy.Result(0, log, "LOG: 4 Irregular Vertices: refused: no.\n", "/nonexistent.ply")
+    assert [x["a"] for x in r.returned] == [1, 2] and r.refusal == "no." and not r.ok
+
+
 def test_stage_from_environment(monkeypatch, tmp_path):
+    from mlpy import server
     monkeypatch.setenv("FI_STAGE", str(tmp_path))
-    assert meshlab.find_stage() == str(tmp_path)
-    assert meshlab.meshlabserver_path(str(tmp_path)) == str(tmp_path / "bin" / "meshlabserver")
-    assert not meshlab.have_meshlab(str(tmp_path))
+    assert server.find_stage() == str(tmp_path)
+    assert server.meshlabserver_path(str(tmp_path)) == str(tmp_path / "bin" / "meshlabserver")
+    assert not server.have_meshlab(str(tmp_path))
     with pytest.raises(RuntimeError):
-        meshlab.Server(stage=str(tmp_path)).run("bunny00.off", str(tmp_path / "o.ply"), [])
+        server.Server(stage=str(tmp_path)).run("bunny00.off", str(tmp_path / "o.ply"), [])
+
+
+def test_scripts_names():
+    """What scripts/ import from mlpy (render_png.py, demo.sh, bench_reduction.py) is there,
+    with paths accepted where they were."""
+    for name in ["DATA", "AbsPerc", "Enum", "Filter", "diagonal", "edge_length_for", "euler_characteristic",
+                 "hausdorff", "irregular_mask", "read_mesh", "run", "shape_measures", "valences"]:
+        assert hasattr(mlpy, name), name
+    m = mlpy.read_mesh(os.path.join(mlpy.DATA, "knot1.off"))
+    assert mlpy.diagonal("knot1.off") == pytest.approx(fo.diagonal(m))
+    assert max(mlpy.hausdorff("knot1.off", m)) < 1e-12
 
 
 # ------------------------------------------------------------------ rendering
