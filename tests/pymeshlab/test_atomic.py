@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 import fi_oracle as fo
-from fi_pm import (ATOMIC, OPERATIONS, apply, assert_counts, assert_same_state, canonical_faces, index_by_position,
-                   load, painted, quality, refuse, rgb, select, selected, state, tri)
+from fi_pm import (ATOMIC, OPERATIONS, apply, assert_counts, assert_same_state, canonical_faces, load, painted,
+                   quality, refuse, rgb, select, selected, state, tri)
 
 # knot1: an adjacent 5-7 pair with no other irregular vertex within 3 edges, and a second one.
 PAIR = (206, 2273)   # (v5, v7)

@@ -9,8 +9,8 @@ import pymeshlab
 import pytest
 
 import fi_oracle as fo
-from fi_pm import (AUTOMATIC, apply, assert_counts, assert_same_state, index_by_position, load, painted, quality,
-                   refuse, rgb, select, selected, state, tri)
+from fi_pm import (AUTOMATIC, apply, assert_counts, assert_same_state, canonical_faces, index_by_position, load,
+                   painted, quality, refuse, rgb, select, selected, state, tri)
 
 DEFAULTS = dict(targetcount=0, hausdorffbudget=0.5, minangle=30, maxtravel=12, protect="Nothing",
                 relaxation="Local", timelimit=0, colorize=True)
@@ -214,11 +214,12 @@ def test_protected_region_is_untouched():
     found[where[where >= 0]] = True
     assert found[picked].all()  # every protected vertex is still where it was
     keep = np.nonzero(picked)[0]
-    def faces_among(t, idx_of_input):
-        f = idx_of_input[t.faces]
-        inside = np.isin(f, keep).all(axis=1)
-        from fi_pm import canonical_faces
-        return canonical_faces(f[inside])
+
+    def faces_among(t, input_index):
+        """The faces of t whose corners are all protected, as input indices."""
+        f = input_index[t.faces]
+        return canonical_faces(f[np.isin(f, keep).all(axis=1)])
+
     assert faces_among(t1, where) == faces_among(t0, np.arange(len(t0.vertices)))
     assert np.array_equal(np.sort(where[selected(ms)]), keep)  # the selection is kept
     assert out["irregular_after"] < out["irregular_input"]

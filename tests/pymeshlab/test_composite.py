@@ -10,7 +10,7 @@ import pytest
 
 import fi_oracle as fo
 from fi_pm import (AGGREGATE, CANCEL_QUADRUPLE, CANCEL_TRIPLE, GENERATE, MOVE_PAIR, REDUCE, apply, assert_counts,
-                   assert_same_state, canonical_faces, index_by_position, load, painted, quality, refuse, rgb,
+                   assert_same_state, index_by_position, load, painted, quality, refuse, rgb,
                    select, selected, state, tri)
 
 PAIR = (206, 2273)       # knot1: an adjacent 5-7 pair with no other irregular vertex within 3 edges
