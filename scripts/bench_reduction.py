@@ -18,7 +18,7 @@ import time
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "tests", "integration"))
+sys.path.insert(0, os.path.join(HERE, "..", "tests", "meshlabserver"))
 from mlpy import (DATA, AbsPerc, Enum, Filter, diagonal, edge_length_for, euler_characteristic,  # noqa: E402
                   hausdorff, irregular_mask, read_mesh, run, shape_measures, valences)
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Renders a mesh (PLY, e.g. with the plugin's vertex colours, or OFF) to a PNG: z-buffer,
 Lambert headlight, per-vertex colours (light grey without). numpy only; see
-tests/integration/mlpy/render.py.
+tests/meshlabserver/mlpy/render.py.
 
     /usr/bin/python3 scripts/render_png.py IN.ply OUT.png [--size 800x800] [--view x,y,z]
         [--title TEXT] [--legend] [--flat] [--wire]
@@ -11,7 +11,7 @@ import os
 import sys
 import time
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests", "integration"))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests", "meshlabserver"))
 from mlpy import read_mesh  # noqa: E402
 from mlpy.render import draw_legend, draw_title, legend_height, render, title_height, write_png  # noqa: E402
 

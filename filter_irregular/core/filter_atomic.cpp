@@ -39,6 +39,13 @@ FilterOutcome ApplyAtomic(FilterContext& ctx, const ParamValues& par) {
     wrongCount = Format("%s needs exactly %zu selected vertices (%s); %zu are selected.", what, n, words[n], sel.size());
     return false;
   };
+  // A graph operation (flip, collapse, split) states no valence changes of its own: they all
+  // lie in the selection's 1-ring (plus a split's new vertex), measured before and after.
+  const bool graphOp = op >= 6;
+  std::vector<std::pair<int, int>> ringBefore;
+  if (graphOp)
+    for (int v : irr::KRing(m, sel, 1)) ringBefore.emplace_back(v, ed.Valence(v));
+  int created = -1;
   irr::AtomicOutcome out;
   switch (op) {
     case 0: {  // 5-7 pair move
@@ -93,7 +100,6 @@ FilterOutcome ApplyAtomic(FilterContext& ctx, const ParamValues& par) {
                                          : "Ambiguous vertex split: the three selected vertices form a triangle; select "
                                            "two neighbours of the split vertex that are not adjacent to each other.");
       const int c = centre[0];
-      int created = -1;
       out.result = ed.Split(sel[c], sel[(c + 1) % 3], sel[(c + 2) % 3], &created);
       out.description =
           Format("split vertex %d along edges to %d and %d", sel[c], sel[(c + 1) % 3], sel[(c + 2) % 3]);
@@ -102,6 +108,15 @@ FilterOutcome ApplyAtomic(FilterContext& ctx, const ParamValues& par) {
     default: return FilterOutcome::Refuse("Unknown operation.");
   }
   if (!out.result) return FilterOutcome::Refuse(out.result.reason);
+  if (graphOp) {
+    for (auto& vd : ringBefore) {
+      const int now = ed.IsLive(vd.first) ? ed.Valence(vd.first) : 0;  // deleted: 0, as AtomicOutcome
+      if (now != vd.second) out.changes[vd.first] = now;
+    }
+    if (created >= 0) out.changes[created] = ed.Valence(created);
+    for (auto& kv : out.changes)
+      if (kv.second > 0 && kv.second != (ed.IsBoundary(kv.first) ? 4 : 6)) out.irregular.push_back(kv.first);
+  }
   // Re-select what the operation produced (irregular vertices it reports, or the touched ones).
   std::vector<int> keep = out.irregular;
   if (keep.empty())

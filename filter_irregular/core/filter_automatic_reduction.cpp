@@ -49,13 +49,6 @@ std::vector<char> FrozenFromSelection(CMeshO& m, int protect) {
   return frozen;
 }
 
-std::vector<double> HistogramVector(const std::map<int, int>& h) {
-  int top = 0;
-  for (auto& kv : h) top = std::max(top, kv.first);
-  std::vector<double> v(size_t(top) + 1, 0.0);
-  for (auto& kv : h) v[size_t(kv.first)] = kv.second;
-  return v;
-}
 }  // namespace
 
 FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par) {
@@ -111,6 +104,8 @@ FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par
     }
   }
 
+  // What the reduction starts from (after any remeshing), counted as Analyze counts.
+  const irr::TopologySummary start = remeshLength > 0 ? irr::Summarize(m) : before;
   irr::ReductionOptions opt;
   opt.targetCount = par.Int("targetCount");
   opt.hausdorffBudgetPercent = budget;
@@ -165,9 +160,11 @@ FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par
   out.SetBool("remeshed", remeshLength > 0);
   out.SetInt("remeshed_vertices", remeshLength > 0 ? m.VN() : 0);
   out.SetFloat("remesh_hausdorff_percent", remeshDistance);
-  out.SetInt("irregular_before", rep.irregularBefore);
-  out.SetVector("valence_histogram_before", HistogramVector(rep.histogramBefore));
+  AddSummaryValues(out, start, "_before");
   AddSummaryValues(out, after, "_after");
+  // The reduction edits interior vertices only: targetCount and stop_reason count those.
+  out.SetInt("interior_irregular_before", rep.irregularBefore);
+  out.SetInt("interior_irregular_after", rep.irregularAfter);
   out.SetInt("vertices_after", after.vertices);
   out.SetInt("faces_after", after.faces);
   out.SetInt("type_splits", rep.typeSplits);

@@ -313,8 +313,9 @@ std::vector<FilterSpec> MakeCatalog() {
                  "as 'Remeshing: Isotropic Explicit Remeshing'), so one run goes from a scan to a clean result. 0 "
                  "keeps the mesh as it is."),
       Int("targetCount", 0, 0, 1000000000, "Target irregular count",
-          "Stop once this many irregular vertices remain; 0 removes as many as the limits below allow. A closed "
-          "surface of genus g keeps at least |12 - 12g| (Gauss-Bonnet, eq. 2)."),
+          "Stop once this many interior irregular vertices remain (the reduction does not edit boundary vertices, "
+          "so they do not count); 0 removes as many as the limits below allow. A closed surface of genus g keeps "
+          "at least |12 - 12g| (Gauss-Bonnet, eq. 2)."),
       Float("hausdorffBudget", 0.5, 0, 100, "Hausdorff budget (% of diagonal)",
             "An edit whose triangles would leave the input surface by more than this (percent of the bounding-box "
             "diagonal) is undone."),

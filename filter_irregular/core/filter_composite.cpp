@@ -65,9 +65,11 @@ FilterOutcome RunComposite(FilterContext& ctx, const ParamValues& par, const cha
   CompositeFrame frame{m, ed, ops, sel, ctx, FilterOutcome()};
   irr::CompositeOutcome out = body(frame);
   if (!out.result) return FilterOutcome::Refuse(out.result.reason);
+  // Select what the operation leaves irregular: a vertex one step made irregular may have been
+  // made regular by a later one (Reduce reduces the ends of its own splits).
   for (auto& v : m.vert) v.ClearS();
   for (int v : out.irregular)
-    if (ed.IsLive(v)) m.vert[size_t(v)].SetS();
+    if (ed.IsLive(v) && ed.Valence(v) != (ed.IsBoundary(v) ? 4 : 6)) m.vert[size_t(v)].SetS();
   FinishEdit(m);
   ctx.Logf("%s: %d atomic steps", what, out.atomicSteps);
   if (!out.log.empty() && out.atomicSteps <= 50) ctx.Logf("Steps:\n%s", out.log.c_str());

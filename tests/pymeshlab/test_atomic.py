@@ -243,8 +243,9 @@ def test_edge_collapse_keeps_the_lower_index():
     where = check_edit(t0, t1, {lo: 6 + 6 - 4, c: 5, d: 5}, deleted=[hi], moved=[lo])
     # the survivor sits at the midpoint of the edge
     assert np.allclose(t1.vertices[np.nonzero(where == lo)[0][0]], (t0.vertices[lo] + t0.vertices[hi]) / 2)
-    # the selected vertex that survives stays selected
-    assert selected_inputs(ms, where) == [lo]
+    # the irregular vertices it produced are selected: the v8 and the two v5 (README)
+    assert selected_inputs(ms, where) == sorted([lo, c, d])
+    assert out["changed_vertices"] == 4  # lo, c, d, and hi deleted
     assert out["v8_after"] == out["v8_before"] + 1 and out["v5_after"] == out["v5_before"] + 2
 
 

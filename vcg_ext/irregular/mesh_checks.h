@@ -145,8 +145,9 @@ InputReport DiagnoseInput(MeshType& m) {
     }
   }
   // Non-manifold vertices: the fan reached from one face through FF must hold every face of v.
-  // Only meaningful on manifold edges, so skip when those failed.
-  if (r.nonManifoldEdges == 0 && r.degenerateFaces == 0) {
+  // Only meaningful on manifold, consistently oriented edges (the fan walk follows the
+  // orientation), so skip when those failed: their message is the one that helps.
+  if (r.nonManifoldEdges == 0 && r.degenerateFaces == 0 && r.misorientedEdges == 0) {
     std::vector<char> done(m.vert.size(), 0);
     for (size_t i = 0; i < m.face.size(); ++i) {
       FaceType* f = &m.face[i];
