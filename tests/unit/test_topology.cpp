@@ -151,7 +151,7 @@ class Corpus : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(Corpus, GaussBonnetAndInvariants) {
   TMesh m;
-  if (!test::LoadCorpus(m, GetParam())) GTEST_SKIP() << "missing " << GetParam();
+  ASSERT_TRUE(test::LoadCorpus(m, GetParam())) << "missing " << GetParam() << " (run scripts/setup.sh)";
   ASSERT_TRUE(DiagnoseInput(m).Verdict().ok) << DiagnoseInput(m).Verdict().reason;
   TopologySummary s = Summarize(m);
   EXPECT_TRUE(s.GaussBonnetHolds());
