@@ -9,6 +9,7 @@
 #include "filters.h"
 
 #include <vcg/complex/append.h>
+#include <vcg/complex/algorithms/stat.h>
 #include <vcg/complex/algorithms/update/bounding.h>
 #include <vcg/complex/algorithms/update/normal.h>
 #include <vcg/complex/algorithms/update/topology.h>
@@ -62,6 +63,19 @@ FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par
     return FilterOutcome::Refuse(
         "Remeshing first replaces every vertex, so a selection cannot be protected: set 'Remesh first' to 0 or "
         "'Protect the selection' to Nothing.");
+  if (remeshLength > 0) {
+    // A tiny edge length on a large surface would remesh toward billions of triangles: refuse
+    // with the estimate instead of running for hours.
+    const double area = vcg::tri::Stat<CMeshO>::ComputeMeshArea(m);
+    const double estimate = irr::VertexCountForEdgeLength(area, remeshLength);
+    if (estimate > irr::kMaxRemeshVertices)
+      return FilterOutcome::Refuse(
+          Format("Remeshing to edge length %g would make about %.3g vertices, more than this filter accepts (%.0f): "
+                 "use an edge length of at least %.4g (about %.0f vertices), or %.4g for about 20,000.",
+                 remeshLength, estimate, irr::kMaxRemeshVertices,
+                 irr::EdgeLengthForVertexCount(area, int(irr::kMaxRemeshVertices)), irr::kMaxRemeshVertices,
+                 irr::EdgeLengthForVertexCount(area, 20000)));
+  }
   if (protect != 0 && SelectedVertices(m).empty())
     return FilterOutcome::Refuse("'Protect the selection' is set but no vertex is selected.");
   const auto t0 = std::chrono::steady_clock::now();

@@ -4,6 +4,9 @@ result's arrays, the symmetric Hausdorff distance exactly with numpy/scipy (cros
 with pymeshlab's get_hausdorff_distance); MeshLab's isotropic remeshing is the peer. The
 filter is slow (bunny00: about 40 s), so it runs on bunny00 once and otherwise on small
 inputs (knot1 3200 vertices, elephant 2775, mesh_with_border 548)."""
+import re
+import time
+
 import numpy as np
 import pymeshlab
 import pytest
@@ -284,3 +287,22 @@ def test_refusals_leave_the_mesh_unchanged():
     # quality and selection included
     refuse(ms, AUTOMATIC, ["alone leaves the input by", "more than the Hausdorff budget (0.01%)"],
            **dict(DEFAULTS, remeshedgelength=pymeshlab.PercentageValue(10), hausdorffbudget=0.01))
+
+
+def test_a_remeshing_length_that_would_need_billions_of_triangles_is_refused_at_once():
+    """remeshEdgeLength 1e-5 on knot1 (diagonal ~ 4.6) would make ~1e11 vertices: refused from
+    the area estimate, with the estimate and lengths that work, before any remeshing (the
+    filter used to run for hours)."""
+    ms = painted("knot1.off")
+    t0 = tri(ms)
+    area = fo.triangle_areas(t0).sum()
+    estimate = 2 * area / (np.sqrt(3) * 1e-5 ** 2)
+    assert estimate > 1e10
+    start = time.monotonic()
+    text = refuse(ms, AUTOMATIC, ["Remeshing to edge length 1e-05 would make about",
+                                  "more than this filter accepts (4000000)", "for about 20,000"],
+                  **dict(DEFAULTS, remeshedgelength=pymeshlab.PureValue(1e-5)))
+    assert time.monotonic() - start < 30  # refused from an estimate, not after remeshing
+    # the suggested length for 20,000 vertices is the oracle's
+    suggested = float(re.search(r", or ([0-9.e+-]+) for about 20,000", text).group(1))
+    assert suggested == pytest.approx(fo.edge_length_for(t0, 20000), rel=1e-3)

@@ -26,6 +26,17 @@ inline double EdgeLengthForVertexCount(double area, int vertices) {
   return vertices > 0 ? std::sqrt(2.0 * area / (std::sqrt(3.0) * vertices)) : 0;
 }
 
+/// About how many vertices remeshing a surface of area `area` to edge length `length` makes
+/// (the inverse of EdgeLengthForVertexCount). Lets a caller refuse a length that would need
+/// more memory than a machine has before spending minutes on it.
+inline double VertexCountForEdgeLength(double area, double length) {
+  return length > 0 ? 2.0 * area / (std::sqrt(3.0) * length * length) : 0;
+}
+
+/// The most vertices RemeshIsotropic is asked to make (about 1.5 GB for MeshLab's mesh and
+/// its projection copy): above it a caller refuses and suggests a longer edge.
+constexpr double kMaxRemeshVertices = 4e6;
+
 namespace detail {
 // The remesher marks the faces of the surface it projects on, and we build its FF adjacency.
 // With optional (Ocf) components, as in MeshLab's CMeshO, a fresh copy has neither until they
