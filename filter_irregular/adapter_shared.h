@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <string>
+#include <type_traits>
 
 #include <QString>
 #include <QStringList>
@@ -97,6 +98,30 @@ class MeshModelContext : public FilterContext {
   vcg::CallBackPos* cb_;
   std::function<void(LogLevel, const std::string&)> logger_;
 };
+
+inline std::string OutputValuesText(const FilterOutcome& out);
+
+/// Applies the filter to the document's current mesh, as both adapters do: the context, the
+/// parameters, and the log lines "Irregular Vertices: refused: <reason>" (meshlabserver never
+/// prints a filter's error message, so the reason must be in the log) or
+/// "Irregular Vertices: returned: <values>". The adapter turns a refusal into its API's error.
+template <class MeshDocumentT, class RichParameterListT>
+FilterOutcome ApplyToDocument(const FilterSpec& spec, MeshDocumentT& md, const RichParameterListT& par,
+                              vcg::CallBackPos* cb, const std::function<void(LogLevel, const std::string&)>& log) {
+  auto* mm = md.mm();
+  FilterOutcome out;
+  if (mm == nullptr) {
+    out = FilterOutcome::Refuse("There is no current mesh.");
+  } else {
+    MeshModelContext<std::remove_pointer_t<decltype(mm)>> ctx(*mm, cb, log);
+    out = ApplyFilter(spec, ctx, ReadParams(spec, par));
+  }
+  if (!out.ok)
+    log(LogLevel::Warning, "Irregular Vertices: refused: " + out.reason);
+  else
+    log(LogLevel::Info, "Irregular Vertices: returned: " + OutputValuesText(out));
+  return out;
+}
 
 /// "key=value key=[a b c] ..." for the log (meshlabserver users read the output values there).
 inline std::string OutputValuesText(const FilterOutcome& out) {

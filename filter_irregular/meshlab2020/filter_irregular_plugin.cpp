@@ -53,24 +53,12 @@ void FilterIrregularPlugin::initParameterSet(QAction* a, MeshModel& m, RichParam
 
 bool FilterIrregularPlugin::applyFilter(QAction* a, MeshDocument& md, const RichParameterList& par,
                                         vcg::CallBackPos* cb) {
-  const fi::FilterSpec& spec = *fi::FindFilter(ID(a));
-  MeshModel* mm = md.mm();
-  fi::FilterOutcome out;
-  if (mm == nullptr) {
-    out = fi::FilterOutcome::Refuse("There is no current mesh.");
-  } else {
-    fi::MeshModelContext<MeshModel> ctx(*mm, cb, [this](fi::LogLevel level, const std::string& line) {
-      Log(level == fi::LogLevel::Warning ? GLLogStream::WARNING : GLLogStream::FILTER, "%s", line.c_str());
-    });
-    out = fi::ApplyFilter(spec, ctx, fi::ReadParams(spec, par));
-  }
-  if (!out.ok) {
-    errorMessage = QString::fromStdString(out.reason);
-    Log(GLLogStream::WARNING, "Irregular Vertices: refused: %s", out.reason.c_str());
-    return false;
-  }
-  Log("Irregular Vertices: returned: %s", fi::OutputValuesText(out).c_str());
-  return true;
+  const fi::FilterOutcome out =
+      fi::ApplyToDocument(*fi::FindFilter(ID(a)), md, par, cb, [this](fi::LogLevel level, const std::string& line) {
+        Log(level == fi::LogLevel::Warning ? GLLogStream::WARNING : GLLogStream::FILTER, "%s", line.c_str());
+      });
+  if (!out.ok) errorMessage = QString::fromStdString(out.reason);
+  return out.ok;
 }
 
 MESHLAB_PLUGIN_NAME_EXPORTER(FilterIrregularPlugin)

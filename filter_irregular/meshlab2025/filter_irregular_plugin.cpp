@@ -64,22 +64,11 @@ std::map<std::string, QVariant> FilterIrregularPlugin::applyFilter(const QAction
                                                                    MeshDocument& md, unsigned int& postConditionMask,
                                                                    vcg::CallBackPos* cb) {
   const fi::FilterSpec& spec = *fi::FindFilter(int(ID(a)));
-  MeshModel* mm = md.mm();
-  fi::FilterOutcome out;
-  if (mm == nullptr) {
-    out = fi::FilterOutcome::Refuse("There is no current mesh.");
-  } else {
-    fi::MeshModelContext<MeshModel> ctx(*mm, cb, [this](fi::LogLevel level, const std::string& line) {
-      log(level == fi::LogLevel::Warning ? GLLogStream::WARNING : GLLogStream::FILTER, line);
-    });
-    out = fi::ApplyFilter(spec, ctx, fi::ReadParams(spec, par));
-  }
-  if (!out.ok) {
-    log(GLLogStream::WARNING, "Irregular Vertices: refused: " + out.reason);
-    throw MLException(QString::fromStdString(out.reason));
-  }
-  // The GUI shows no returned map: the values go to the log too, as in the 2020.09 adapter.
-  log("Irregular Vertices: returned: " + fi::OutputValuesText(out));
+  const fi::FilterOutcome out =
+      fi::ApplyToDocument(spec, md, par, cb, [this](fi::LogLevel level, const std::string& line) {
+        log(level == fi::LogLevel::Warning ? GLLogStream::WARNING : GLLogStream::FILTER, line);
+      });
+  if (!out.ok) throw MLException(QString::fromStdString(out.reason));
   postConditionMask = fi::PostConditionOf<MeshModel>(spec);
   std::map<std::string, QVariant> values;
   for (auto& kv : out.values) {
