@@ -42,8 +42,13 @@ _loaded = None
 
 
 def plugin_path():
-    """The plugin file load() uses: $FILTER_IRREGULAR_PLUGIN, else the one in this package."""
-    path = os.environ.get(PLUGIN_ENV) or os.path.join(os.path.dirname(os.path.abspath(__file__)), PLUGIN_FILE)
+    """The plugin file load() uses: $FILTER_IRREGULAR_PLUGIN, else the one in this package (the
+    wheel), else, from a source checkout (PYTHONPATH=python), the one scripts/build.sh built."""
+    here = os.path.dirname(os.path.abspath(__file__))
+    path = os.environ.get(PLUGIN_ENV) or os.path.join(here, PLUGIN_FILE)
+    built = os.path.join(here, "..", "..", "build", "plugin2025", PLUGIN_FILE)
+    if not os.environ.get(PLUGIN_ENV) and not os.path.isfile(path) and os.path.isfile(built):
+        path = os.path.normpath(built)
     if not os.path.isfile(path):
         raise FileNotFoundError(
             "filter_irregular plugin not found at %s (build it with scripts/build.sh, or set %s)" % (path, PLUGIN_ENV))
