@@ -29,6 +29,7 @@
 #include "atomic_ops.h"
 #include "relaxation.h"
 #include "separatrix.h"
+#include "type_change.h"
 
 namespace vcg_ext {
 namespace irregular {
@@ -60,119 +61,57 @@ class CompositeOperations {
   AtomicOperations<MeshType>& atomic() { return ops_; }
 
   // ------------------------------------------------------------ type change (sec. 6.3)
-  /// Splits v (valence k > 7) into k-6 v7, or a v4 (v3) into two (three) v5.
+  /// Splits v (valence k > 7) into k-6 v7, or a v4 (v3) into two (three) v5 (type_change.h:
+  /// the chain configuration, the collapse configuration), in the first orientation that keeps
+  /// every other irregular vertex unchanged; failing that, one that absorbs neighbouring
+  /// irregular vertices into regular ones. After it v is replaced by v5s or v7s only.
+  /// out.irregular: the v7s (v5s) produced. A v5, v6 or v7 is left as it is.
   CompositeOutcome ReduceTo57(int v) {
     CompositeOutcome out;
     auto cp = ed_.Mark();
     if (!ed_.IsLive(v) || ed_.IsBoundary(v)) return Fail(out, cp, Str("vertex ", v, " is not an interior vertex"));
-    int d = ed_.Valence(v);
+    const int d = ed_.Valence(v);
     if (d == 5 || d == 6 || d == 7) {
       out.result = Result::Ok();
       if (d != 6) out.irregular = {v};
       return out;
     }
-    std::vector<int> produced;
-    if (d > 7) {
-      // Split along (v, n_i), (v, n_i+4): v keeps 3 neighbours between them and becomes a v6
-      // (3 + 3); the new vertex takes the rest (k - 2); n_i, n_i+4 gain one edge each.
-      int cur = v;
-      while (ed_.Valence(cur) > 7) {
-        const int k = ed_.Valence(cur);
-        VertexStar<MeshType> s = ed_.Star(cur);
-        int best = -1, bestScore = std::numeric_limits<int>::max();
-        for (int i = 0; i < k; ++i) {
-          // the ends gain an edge: a regular end becomes one of the new v7 (the type split of
-          // sec. 6.3); a v5 end would become regular (it would absorb a v5 nearby: second
-          // choice); a v7 end would become a v8 (avoid)
-          int a = ed_.Index(s.neighbors[size_t(i)]), b = ed_.Index(s.neighbors[size_t((i + 4) % k)]);
-          auto cost = [&](int x) {
-            const int after = ed_.Valence(x) + 1;
-            return after == 7 ? 0 : after == 6 ? 1 : 10;
-          };
-          int score = cost(a) + cost(b);
-          if (score < bestScore) bestScore = score, best = i;
-        }
-        int a = ed_.Index(s.neighbors[size_t(best)]), b = ed_.Index(s.neighbors[size_t((best + 4) % k)]);
-        int created = -1;
-        // Split(w, a, b) keeps the neighbours from a to b for w: here b to a keeps k-5 neighbours.
-        Result r = ed_.Split(cur, b, a, &created);
-        if (!r) return Fail(out, cp, Str("type splitting of vertex ", v, " failed: ", r.reason));
-        ++out.atomicSteps;
-        Step(out, Str("split v", k, " ", cur, " along (", cur, ", ", a, "), (", cur, ", ", b, ")"), {cur, created, a, b});
-        for (int x : {a, b}) produced.push_back(x);
-        // the vertex that kept k-2 edges continues
-        cur = ed_.Valence(cur) > ed_.Valence(created) ? cur : created;
-        if (ed_.Valence(cur) == 7) produced.push_back(cur);
-      }
-    } else {
-      // v4 / v3: collapse v into a regular neighbour x: d(x) + d(v) - 4 = 6 (v4) or 5 (v3),
-      // and the two opposite vertices lose an edge (6 -> 5).
-      VertexStar<MeshType> s = ed_.Star(v);
-      Result last = Result::Fail("no neighbour fits");
-      bool done = false;
-      for (size_t i = 0; i < s.neighbors.size() && !done; ++i) {
-        const int x = ed_.Index(s.neighbors[i]);
-        if (ed_.Valence(x) != 6) continue;
-        int o[2];
-        ed_.Opposites(v, x, o);
-        // the opposite vertices lose an edge: a v5 there would become a v4
-        if (ed_.Valence(o[0]) < 6 || ed_.Valence(o[1]) < 6) continue;
-        last = ed_.Collapse(v, x);
-        if (last) {
-          done = true;
-          ++out.atomicSteps;
-          Step(out, Str("collapse v", d, " ", v, " into ", x), {x, o[0], o[1]});
-          produced = {o[0], o[1], x};
-        }
-      }
-      if (!done)
-        return Fail(out, cp, Str("vertex ", v, " (v", d, ") has no regular neighbour to collapse into whose opposite "
-                                 "vertices have valence 6 or more: ", last.reason));
+    TypeChange<MeshType> tc(ed_);
+    auto hook = [&](const std::string& what, const std::vector<int>& around) {
+      ++out.atomicSteps;
+      Step(out, what, around);
+    };
+    TypeSplitRequest req;
+    req.vertex = v;
+    TypeChangeOutcome o = tc.TypeSplit(req, hook);
+    if (!o) {
+      out.atomicSteps = 0;
+      out.log.clear();
+      req.absorb = true;
+      TypeChangeOutcome lenient = tc.TypeSplit(req, hook);
+      if (!lenient) return Fail(out, cp, o.status.reason);
+      o = lenient;
     }
-    std::sort(produced.begin(), produced.end());
-    produced.erase(std::unique(produced.begin(), produced.end()), produced.end());
-    for (int x : produced)
-      if (ed_.IsLive(x) && ed_.Valence(x) != 6) out.irregular.push_back(x);
+    out.irregular = o.produced;
     out.result = Result::Ok();
     return out;
   }
 
-  /// Aggregation, the inverse of type splitting: the selected v7s (v5s) become one vertex of
-  /// valence 6 + their number (6 - their number). Searches one flip, collapse or split that does
-  /// it; the group must be within one edge of each other as type splitting leaves them.
+  /// Aggregation, the inverse of type splitting (type_change.h): the selected v7s become one
+  /// v(6+n) by collapses merging two or three at a time, two v5 a v4 and three v5 a v3 by one
+  /// split. out.irregular: the aggregate.
   CompositeOutcome Aggregate(const std::vector<int>& group) {
     CompositeOutcome out;
     auto cp = ed_.Mark();
-    if (group.size() < 2) return Fail(out, cp, "aggregation needs at least two vertices");
-    int n5 = 0, n7 = 0;
-    for (int v : group) {
-      if (!ed_.IsLive(v) || ed_.IsBoundary(v)) return Fail(out, cp, Str("vertex ", v, " is not an interior vertex"));
-      n5 += ed_.Valence(v) == 5;
-      n7 += ed_.Valence(v) == 7;
-    }
-    if (n5 != int(group.size()) && n7 != int(group.size()))
-      return Fail(out, cp, "aggregation merges only v7s (into a v8, v9, ...) or only v5s (into a v4 or v3)");
-    if (n5 > 3) return Fail(out, cp, "at most three v5 can merge (into a v3)");
-    const int target = n7 ? 6 + n7 : 6 - n5;
-    AtomicOutcome a = ops_.FindAndApply(group, [&](const std::map<int, int>& before, const std::map<int, int>& after) {
-      int made = 0;
-      for (auto& kv : after) {
-        const bool inGroup = std::find(group.begin(), group.end(), kv.first) != group.end();
-        const int b = before.count(kv.first) ? before.at(kv.first) : 0;
-        if (!inGroup && b != 6 && b != 0) return false;  // never disturb other irregular vertices
-        if (kv.second == 0 || kv.second == 6) continue;
-        if (kv.second != target) return false;
-        ++made;
-      }
-      for (int g : group)
-        if (!after.count(g)) return false;
-      return made == 1;
-    }, Str("aggregation into a v", target));
-    if (!a) return Fail(out, cp, Str("these vertices cannot be aggregated into one v", target, " by a single operation: ",
-                                      a.result.reason));
-    ++out.atomicSteps;
-    Step(out, a.description, a.irregular);
-    out.irregular = a.irregular;
+    TypeChange<MeshType> tc(ed_);
+    AggregationRequest req;
+    req.group = group;
+    TypeChangeOutcome o = tc.Aggregate(req, [&](const std::string& what, const std::vector<int>& around) {
+      ++out.atomicSteps;
+      Step(out, what, around);
+    });
+    if (!o) return Fail(out, cp, o.status.reason);
+    out.irregular = {o.resultVertex};
     out.result = Result::Ok();
     return out;
   }
