@@ -190,10 +190,14 @@ std::vector<FilterSpec> MakeCatalog() {
   f.pythonName = "meshing_irregular_reduce_to_valence_5_and_7";
   f.classes = kRemeshing | kSelection;
   f.info =
-      "Type splitting (Li et al., sec. 6.3): every irregular vertex of valence k > 7 becomes k-6 v7 (vertex "
-      "splits), every v4 (v3) two (three) v5 (an edge collapse), so the other operations, which work on v5 and v7, "
-      "apply. Vertices that cannot be reduced (e.g. no suitable neighbour) are kept and listed in the log. The "
-      "resulting irregular vertices are selected.";
+      "Type splitting (Li et al., sec. 6.3, fig. 9): every interior vertex of valence k > 7 becomes exactly k-6 v7, "
+      "every v4 (v3) two (three) v5, so the other operations, which work on v5 and v7, apply. A vk is split into a "
+      "chain of regular vertices with the v7s in two rows along its sides (k odd: the vertex itself stays a v7 at "
+      "the chain's end); a v4 (v3) collapses one regular neighbour into itself and the two neighbours beside it (and, "
+      "for a v3, the vertex itself) become the v5s. The first orientation that leaves every other irregular vertex "
+      "unchanged is taken; when none does, one in which a neighbouring v5 (v7) becomes regular, cancelling with a "
+      "produced v7 (v5). Vertices that cannot be reduced are kept and listed in the log. The v7s and v5s produced "
+      "are selected.";
   f.params = {
       Enum("scope", 0, {"All irregular vertices", "Selected vertices"}, "Vertices",
            "Reduce every irregular vertex of valence other than 5 and 7, or only the selected ones."),
@@ -209,9 +213,13 @@ std::vector<FilterSpec> MakeCatalog() {
   f.pythonName = "meshing_irregular_aggregation";
   f.classes = kRemeshing | kSelection;
   f.info =
-      "Type aggregation (sec. 6.3), the inverse of type splitting: the selected v7s merge into one v8, v9, ... and "
-      "the selected v5s into one v4 (two) or v3 (three). They must be as close as type splitting leaves them (one "
-      "graph operation apart).";
+      "Type aggregation (sec. 6.3), the inverse of type splitting: the n selected v7s merge into one v(6+n) (v8, "
+      "v9, v10, ...), two selected v5 into a v4 and three into a v3. v7s merge two or three at a time by edge "
+      "collapses: two that face each other across an edge of regular vertices, or across an edge of the growing "
+      "vertex, as Reduce to Valence 5 and 7 leaves them (two rows along a chain). Two v5 merge when a regular common "
+      "neighbour has exactly one vertex between them, three when they are the corners of one triangle (a vertex "
+      "split). No other vertex changes valence. Refused, with the reason, when the selection is not in such a "
+      "configuration; two adjacent v5 cannot become a v4.";
   f.params = {RelaxAfterEditing(), Colorize()};
   f.apply = ApplyAggregate;
   c.push_back(f);

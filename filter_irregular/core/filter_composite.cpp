@@ -109,11 +109,9 @@ FilterOutcome ApplyReduce(FilterContext& ctx, const ParamValues& par) {
       if (!f.ed.IsLive(todo[t])) continue;
       const int d = f.ed.Valence(todo[t]);
       if (d >= 5 && d <= 7) continue;
+      // type_change.h: the vertex becomes v7s (v5s) only; no other irregular vertex changes,
+      // unless no orientation allows it, then a neighbouring v5 (v7) may be absorbed
       irr::CompositeOutcome r = f.ops.ReduceTo57(todo[t]);
-      // a split end of valence 7 becomes a v8: reduce it too (bounded: each pass lowers valences)
-      if (r && !selectedOnly && todo.size() < 4 * initial)
-        for (int x : r.irregular)
-          if (f.ed.IsLive(x) && (f.ed.Valence(x) > 7 || f.ed.Valence(x) < 5)) todo.push_back(x);
       if (r) {
         ++reduced;
         out.atomicSteps += r.atomicSteps;

@@ -652,3 +652,63 @@ TEST(TypeChange, DryRunsAgreeWithTheOperationsOnRandomRequests) {
   EXPECT_GT(aggregations, 10);
   EXPECT_GT(refusedSplits + refusedAggregations, 5);
 }
+
+// ---------------------------------------------------------------- absorbing configurations
+
+TEST(TypeChange, FlipConfigurationOfAV8WithAV7Neighbour) {
+  TMesh m;
+  ConePatch c = BuildCone(m, 8);
+  MeshEditor<TMesh> ed(m);
+  // make r0 = 1 a v7: flip the outer edge ((2,0), (1,1)) of sector 0, whose opposites are r0
+  // and (2,1)
+  ASSERT_TRUE(ed.Flip(c.Id(0, 2, 0), c.Id(0, 1, 1)).ok);
+  ed.Commit();
+  ASSERT_EQ(ed.Valence(1), 7);
+  TypeChange<TMesh> tc(ed);
+  TypeSplitRequest req;
+  req.vertex = 0;
+  req.orientation = 0;
+  req.configuration = TypeSplitRequest::kFlipV8;
+  EXPECT_FALSE(tc.TypeSplit(req));  // it changes the v7 neighbour: needs absorb
+  req.absorb = true;
+  const std::vector<int> val = test::Valences(m);
+  const std::vector<vcg::Point3f> pos = Positions(m);
+  TypeChangeOutcome p = tc.PredictTypeSplit(req);
+  TypeChangeOutcome o = tc.TypeSplit(req);
+  ASSERT_TRUE(o) << o.status.reason;
+  EXPECT_EQ(p.steps, o.steps);
+  // the centre becomes a v7, r0 a v6, r1 = 2 and r7 = 8 v7s
+  EXPECT_EQ(o.produced, (std::vector<int>{0, 2, 8}));
+  EXPECT_EQ(o.absorbed, (std::vector<int>{1}));
+  EXPECT_EQ(val[1], 7);
+  EXPECT_EQ(test::Valences(m)[1], 6);
+  EXPECT_FALSE(ed.Adjacent(0, 1));
+  EXPECT_TRUE(ed.Adjacent(2, 8));
+  ExpectOnlyTouched(m, val, pos, o, {});
+  ExpectValid(m);
+}
+
+TEST(TypeChange, AbsorbMergesAnIrregularNeighbourIntoAV4) {
+  TMesh m;
+  ConePatch c = BuildCone(m, 4);
+  MeshEditor<TMesh> ed(m);
+  // r0 = 1 becomes a v7 (flip the outer edge of sector 0 as above)
+  ASSERT_TRUE(ed.Flip(c.Id(0, 2, 0), c.Id(0, 1, 1)).ok);
+  ed.Commit();
+  ASSERT_EQ(ed.Valence(1), 7);
+  TypeChange<TMesh> tc(ed);
+  TypeSplitRequest req;
+  req.vertex = 0;
+  req.orientation = 0;
+  TypeChangeOutcome strict = tc.TypeSplit(req);
+  EXPECT_FALSE(strict);
+  EXPECT_NE(strict.status.reason.find("vertex 1 "), std::string::npos) << strict.status.reason;
+  req.absorb = true;
+  TypeChangeOutcome o = tc.TypeSplit(req);
+  ASSERT_TRUE(o) << o.status.reason;
+  // 7 + 4 - 4: the merged vertex 0 is a v7; r1 = 2 and r3 = 4 are the v5s
+  EXPECT_EQ(o.produced, (std::vector<int>{0, 2, 4}));
+  EXPECT_EQ(o.absorbed, (std::vector<int>{1}));
+  EXPECT_EQ(test::Valences(m)[0], 7);
+  ExpectValid(m);
+}

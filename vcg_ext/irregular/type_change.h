@@ -22,6 +22,11 @@
 //    r(s+1) drop to v5 (they must be regular). The v4's vertex survives as a regular vertex.
 //  * v3: the same collapse: d = 6+3-4 = 5, so the v3's vertex and r(s-1), r(s+1) are the three
 //    v5, forming a triangle.
+//  * Absorbing (TypeSplitRequest::absorb, the fallback of Reduce): a neighbour the configuration
+//    moves toward 6 may be irregular (a v5 side of the chain becomes a v6, a v7 beside the
+//    collapse a v6), an irregular r_s may merge into a v4 (v3) when the merged vertex is a v5,
+//    v6 or v7, and a v8 with a v7 neighbour r0 may flip the edge between them (flip: v8 -> v7,
+//    r0 -> v6, r1 and r(k-1) +1): every touched vertex still ends a v5, v6 or v7.
 //  * Aggregation of n v7 (n >= 2): merges of 2 or 3 at a time into the growing aggregate R:
 //    start with a pair facing each other across an edge (x, y) of two regular vertices
 //    (collapse: 6+6-4 = 8, the pair -1), or with a selected v7 as R; then collapse a regular
@@ -67,14 +72,17 @@ std::string Text(const Args&... args) {
 
 /// One graph operation of a plan (sec. 6.1).
 struct GraphStep {
-  enum Kind { kCollapse, kSplit };
+  enum Kind { kCollapse, kSplit, kFlip };
   Kind kind = kSplit;
-  int a = -1, b = -1, c = -1;  ///< Collapse(a -> b): a deleted, b survives; Split(a; b, c): a keeps b..c CCW
+  int a = -1, b = -1, c = -1;  ///< Collapse(a -> b): a deleted, b survives; Split(a; b, c): a keeps b..c CCW;
+                               ///< Flip(a, b)
   int created = -1;            ///< Split: the new vertex (index m.vert.size() at that time)
   std::string Describe() const {
     std::ostringstream o;
     if (kind == kCollapse)
       o << "collapse vertex " << a << " into " << b;
+    else if (kind == kFlip)
+      o << "flip edge (" << a << ", " << b << ")";
     else
       o << "split vertex " << a << " along (" << a << ", " << b << "), (" << a << ", " << c << "): new vertex " << created;
     return o.str();
@@ -103,17 +111,24 @@ struct TypeChangeOutcome {
 
 /// Type splitting request (sec. 6.3).
 struct TypeSplitRequest {
+  /// The configurations (header comment). kFlipV8 needs `absorb`: a v8 with a v7 neighbour
+  /// r0 flips the edge between them (v8 -> v7, r0 -> v6, its two neighbours beside the edge
+  /// +1: v7s), the fallback when no chain orientation avoids the irregular neighbours.
+  enum Configuration { kAnyConfiguration, kChain, kCollapse, kFlipV8 };
+  Configuration configuration = kAnyConfiguration;
   int vertex = -1;
   /// The neighbour r0 the configuration starts at, counted counter-clockwise from the
   /// vertex's neighbour of smallest index; -1: the first orientation that works.
   /// vk: the first cap is r1..r3 (r1..r4); v4, v3: r0 is the neighbour collapsed into it.
   int orientation = -1;
   /// Odd k: where the odd v7 goes: the vertex itself, at the far end of the chain (false), or
-  /// the first cap (true).
+  /// the first cap (true). With orientation -1 the other place is tried too (after this one).
   bool oddV7AtFirstCap = false;
   /// Allow changing a neighbouring irregular vertex that the configuration moves to valence 6
-  /// (a v5 on the side of the chain, a v7 opposite the collapse): it cancels with one produced
-  /// v7 (v5). Default: refuse, no other irregular vertex changes.
+  /// (a v5 on the side of the chain, a v7 opposite the collapse: it cancels with one produced
+  /// v7 (v5)), or merging an irregular neighbour into a v4 (v3) when the merged vertex is a
+  /// v5, v6 or v7. Every vertex touched still ends a v5, v6 or v7. Default: refuse, no other
+  /// irregular vertex changes.
   bool absorb = false;
 };
 
@@ -199,6 +214,30 @@ class TopologyScratch {
     for (int t = 2; t <= du - 2; ++t) Replace(ru[size_t(t)], u, v);
     dead_.insert(u);
   }
+  /// MeshEditor::CanFlip on the scratch copy; also refuses to change a boundary ring.
+  Result CanFlip(int x, int y) {
+    if (!IsLive(x) || !IsLive(y)) return Result::Fail("a vertex of the edge does not exist");
+    if (!Adjacent(x, y)) return Fail("vertices ", x, " and ", y, " are not joined by an edge");
+    if (IsBoundary(x) || IsBoundary(y)) return Fail("edge (", x, ", ", y, ") touches the boundary");
+    int o[2];
+    Opposites(x, y, o);
+    if (o[0] == o[1]) return Fail("edge (", x, ", ", y, ") has the same vertex on both sides");
+    if (IsBoundary(o[0]) || IsBoundary(o[1])) return Fail("flipping edge (", x, ", ", y, ") would change the boundary");
+    if (Adjacent(o[0], o[1]))
+      return Fail("flipping edge (", x, ", ", y, ") would duplicate the existing edge (", o[0], ", ", o[1], ")");
+    if (Valence(x) <= 3 || Valence(y) <= 3) return Fail("flipping edge (", x, ", ", y, ") would leave a vertex of valence 2");
+    return Result::Ok();
+  }
+  /// Flip(x, y) as MeshEditor::Flip: the edge becomes (o0, o1).
+  void Flip(int x, int y) {
+    int o[2];
+    Opposites(x, y, o);
+    Erase(x, y);
+    Erase(y, x);
+    InsertNextTo(o[0], x, o[1], true);  // around o0: x, then y (face (o0, x, y))
+    InsertNextTo(o[1], y, o[0], true);  // around o1: y, then x (face (o1, y, x))
+  }
+
   /// Split(w; a, b) as MeshEditor::Split: w keeps a..b CCW, the new vertex b..a. Returns it.
   int Split(int w, int a, int b) {
     std::vector<int> rw = Ring(w);
@@ -327,16 +366,17 @@ class TypeChange {
     return r;
   }
 
-  /// Finishes a plan simulated on `s`: valences of the touched vertices, produced vertices.
-  void Close(TypeChangeOutcome& o, Scratch& s, int target) {
+  /// Finishes a plan simulated on `s`: valences of the touched vertices, produced vertices
+  /// (if `split`: the irregular vertices it leaves, created or whose valence changed).
+  void Close(TypeChangeOutcome& o, Scratch& s, bool split) {
     for (int v : s.Touched()) o.valences[v] = s.Valence(v);
-    // produced: the vertices the plan makes irregular (created, or whose valence changed)
     for (auto& kv : o.valences)
-      if (kv.second == target && (!ed_.IsLive(kv.first) || ed_.Valence(kv.first) != target)) o.produced.push_back(kv.first);
+      if (split && kv.second != 6 && (!ed_.IsLive(kv.first) || ed_.Valence(kv.first) != kv.second))
+        o.produced.push_back(kv.first);
     std::sort(o.produced.begin(), o.produced.end());
     for (auto& st : o.steps)
       if (st.kind == GraphStep::kSplit) o.created.push_back(st.created);
-      else o.deleted.push_back(st.a);
+      else if (st.kind == GraphStep::kCollapse) o.deleted.push_back(st.a);
     o.status = Result::Ok();
   }
 
@@ -367,17 +407,43 @@ class TypeChange {
     const std::vector<int> ring = ReferenceRing(v);
     if (req.orientation >= k)
       return {Refusal(Str("orientation ", req.orientation, " does not exist: vertex ", v, " has ", k, " neighbours (0..", k - 1, ")"))};
+    if ((req.configuration == TypeSplitRequest::kChain && k < 8) ||
+        (req.configuration == TypeSplitRequest::kCollapse && k > 4) ||
+        (req.configuration == TypeSplitRequest::kFlipV8 && k != 8))
+      return {Refusal(Str("that configuration does not apply to a v", k, ": the chain splits a vk with k > 7, the "
+                          "collapse a v4 or v3, the flip a v8"))};
+    if (req.configuration == TypeSplitRequest::kFlipV8 && !req.absorb)
+      return {Refusal("the flip configuration changes a v7 neighbour into a v6: allow absorbing neighbours to use it")};
     std::vector<TypeChangeOutcome> plans;
     std::vector<std::string> why;
     const int from = req.orientation < 0 ? 0 : req.orientation, to = req.orientation < 0 ? k : req.orientation + 1;
     for (int s = from; s < to && int(plans.size()) < most; ++s) {
       std::vector<int> r(ring.begin() + s, ring.end());
       r.insert(r.end(), ring.begin(), ring.begin() + s);
+      // odd k with the orientation left open: both places of the odd v7, the asked one first
+      const bool allowed = req.configuration == TypeSplitRequest::kAnyConfiguration ||
+                           req.configuration == (k > 7 ? TypeSplitRequest::kChain : TypeSplitRequest::kCollapse);
+      for (int variant = 0; allowed && variant < (k > 7 && k % 2 == 1 && req.orientation < 0 ? 2 : 1); ++variant) {
+        TypeSplitRequest q = req;
+        q.oddV7AtFirstCap = req.oddV7AtFirstCap != (variant == 1);
+        std::string fail;
+        TypeChangeOutcome o = k > 7 ? ChainPlan(v, r, q, &fail) : CollapsePlan(v, r, q, &fail);
+        o.orientation = s;
+        if (o) plans.push_back(o);
+        else if (variant == 0) why.push_back(Str("orientation ", s, ": ", fail));
+      }
+    }
+    // the flip configuration of a v8, after every chain (it changes a v7 neighbour)
+    const bool flip = req.configuration == TypeSplitRequest::kFlipV8 ||
+                      (req.configuration == TypeSplitRequest::kAnyConfiguration && req.absorb);
+    for (int s = from; flip && k == 8 && s < to && int(plans.size()) < most; ++s) {
+      std::vector<int> r(ring.begin() + s, ring.end());
+      r.insert(r.end(), ring.begin(), ring.begin() + s);
       std::string fail;
-      TypeChangeOutcome o = k > 7 ? ChainPlan(v, r, req, &fail) : CollapsePlan(v, r, req, &fail);
+      TypeChangeOutcome o = FlipPlan(v, r, req, &fail);
       o.orientation = s;
       if (o) plans.push_back(o);
-      else why.push_back(Str("orientation ", s, ": ", fail));
+      else if (req.configuration == TypeSplitRequest::kFlipV8) why.push_back(Str("orientation ", s, ": ", fail));
     }
     if (!plans.empty()) return plans;
     std::string reason = Str("vertex ", v, " (v", k, ") cannot be split into ", k > 7 ? "v7s" : "v5s",
@@ -421,7 +487,7 @@ class TypeChange {
       o.steps.push_back(st);
     }
     o.resultVertex = v;
-    Close(o, s, 7);
+    Close(o, s, true);
     return o;
   }
 
@@ -435,9 +501,14 @@ class TypeChange {
       return Refusal(why);
     };
     if (s.IsBoundary(r[0])) return refuse(Str("vertex ", r[0], " (the neighbour collapsed into ", v, ") lies on the boundary"));
-    if (s.Valence(r[0]) != 6)
-      return refuse(Str("vertex ", r[0], " (the neighbour collapsed into ", v, ") has valence ", s.Valence(r[0]),
-                        ", not 6"));
+    const int merged = s.Valence(r[0]) + k - 4;  // 6 (v4) or 5 (v3) when r0 is regular
+    if (s.Valence(r[0]) != 6) {
+      // absorb: an irregular r0 may merge when the merged vertex is still a v5, v6 or v7
+      if (!req.absorb || merged < 5 || merged > 7)
+        return refuse(Str("vertex ", r[0], " (the neighbour collapsed into ", v, ") has valence ", s.Valence(r[0]),
+                          ", not 6: the merged vertex would be a v", merged));
+      o.absorbed.push_back(r[0]);
+    }
     for (int x : {r[1], r[size_t(k - 1)]}) {
       const std::string b = Bystander(s, x, -1, v, "a neighbour beside the collapsed edge", req.absorb, &o.absorbed);
       if (!b.empty()) return refuse(b);
@@ -451,7 +522,36 @@ class TypeChange {
     s.Collapse(r[0], v);
     o.steps.push_back(st);
     o.resultVertex = v;
-    Close(o, s, 5);
+    Close(o, s, true);
+    return o;
+  }
+
+  /// The flip configuration of a v8 (absorb): flip (v, r0) with r0 a v7: v -> v7, r0 -> v6,
+  /// r1 and r7 +1.
+  TypeChangeOutcome FlipPlan(int v, const std::vector<int>& r, const TypeSplitRequest& req, std::string* fail) {
+    Scratch s(ed_);
+    TypeChangeOutcome o;
+    auto refuse = [&](const std::string& why) {
+      *fail = why;
+      return Refusal(why);
+    };
+    if (s.IsBoundary(r[0]) || s.Valence(r[0]) != 7)
+      return refuse(Str("vertex ", r[0], " (the neighbour of ", v, " the flip configuration needs) is not an interior v7"));
+    o.absorbed.push_back(r[0]);
+    for (int x : {r[1], r[size_t(r.size() - 1)]}) {
+      const std::string b = Bystander(s, x, +1, v, "a neighbour beside the flipped edge", req.absorb, &o.absorbed);
+      if (!b.empty()) return refuse(b);
+    }
+    Result can = s.CanFlip(v, r[0]);
+    if (!can) return refuse(can.reason);
+    GraphStep st;
+    st.kind = GraphStep::kFlip;
+    st.a = v;
+    st.b = r[0];
+    s.Flip(v, r[0]);
+    o.steps.push_back(st);
+    o.resultVertex = v;
+    Close(o, s, true);
     return o;
   }
 
@@ -528,7 +628,7 @@ class TypeChange {
     TypeChangeOutcome o;
     o.steps.push_back(st);
     o.resultVertex = st.a;
-    Close(o, s, -1);
+    Close(o, s, false);
     return o;
   }
 
@@ -601,7 +701,7 @@ class TypeChange {
           o.steps.push_back(st);
         }
         o.resultVertex = done.r;
-        Close(o, fin, -1);
+        Close(o, fin, false);
         return o;
       }
     }
@@ -673,7 +773,12 @@ class TypeChange {
     for (const GraphStep& st : plan.steps) {
       Result r;
       std::vector<int> around;
-      if (st.kind == GraphStep::kCollapse) {
+      if (st.kind == GraphStep::kFlip) {
+        int o[2] = {-1, -1};
+        ed_.Opposites(st.a, st.b, o);
+        r = ed_.Flip(st.a, st.b);
+        around = {st.a, st.b, o[0], o[1]};
+      } else if (st.kind == GraphStep::kCollapse) {
         int o[2] = {-1, -1};
         ed_.Opposites(st.a, st.b, o);
         r = ed_.Collapse(st.a, st.b);
