@@ -119,7 +119,8 @@ struct TypeSplitRequest {
   int vertex = -1;
   /// The neighbour r0 the configuration starts at, counted counter-clockwise from the
   /// vertex's neighbour of smallest index; -1: the first orientation that works.
-  /// vk: the first cap is r1..r3 (r1..r4); v4, v3: r0 is the neighbour collapsed into it.
+  /// vk: the first cap is r1..r3 (r1..r4); v4, v3: r0 is the neighbour collapsed into it;
+  /// kFlipV8: r0 is the v7 neighbour the flipped edge joins.
   int orientation = -1;
   /// Odd k: where the odd v7 goes: the vertex itself, at the far end of the chain (false), or
   /// the first cap (true). With orientation -1 the other place is tried too (after this one).
@@ -763,10 +764,13 @@ class TypeChange {
         return o;
       }
       ed_.RollbackTo(cp);
+      if (r.reason.compare(0, 14, "internal error") == 0) return Refusal(r.reason);  // plan and mesh disagree
       last = r.reason;
       if (plans.size() > 1) last = Str("orientation ", plan.orientation, ": ", last);
     }
-    return Refusal(plans.size() > 1 ? Str("every orientation of the configuration folds the surface (", last, ")") : last);
+    // only the geometric checks refuse a plan the topology allowed
+    return Refusal(Str(plans.size() > 1 ? "every orientation" : "the configuration",
+                       " would fold the surface or leave a degenerate triangle (", last, ")"));
   }
 
   Result Apply(const TypeChangeOutcome& plan, const StepHook& hook) {
