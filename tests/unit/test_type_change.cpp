@@ -712,3 +712,37 @@ TEST(TypeChange, AbsorbMergesAnIrregularNeighbourIntoAV4) {
   EXPECT_EQ(test::Valences(m)[0], 7);
   ExpectValid(m);
 }
+
+TEST(TypeChange, TorusV8BesideTwoV5KeepsThemAndRoundTrips) {
+  // A closed surface (eq. 2 with chi = 0): collapsing a lattice edge of a regular torus makes
+  // a v8 with two v5 neighbours (the collapse's opposite vertices). The split must take an
+  // orientation whose sides avoid them, leave them as they are, and aggregate back.
+  TMesh m;
+  test::RegularTorus(m, 24, 24);
+  MeshEditor<TMesh> ed(m);
+  const int c = 12 * 24 + 12;
+  const int x = ed.Index(ed.Star(c).neighbors[0]);
+  int opp[2];
+  ASSERT_TRUE(ed.Opposites(x, c, opp));
+  ASSERT_TRUE(ed.Collapse(x, c).ok);
+  ed.Commit();
+  ASSERT_EQ(Irregular(m), (std::map<int, int>{{c, 8}, {opp[0], 5}, {opp[1], 5}}));
+  const auto faces = test::CanonicalFaces(m);
+  TypeChange<TMesh> tc(ed);
+  TypeSplitRequest req;
+  req.vertex = c;
+  TypeChangeOutcome s = tc.TypeSplit(req);
+  ASSERT_TRUE(s) << s.status.reason;
+  ASSERT_EQ(s.produced.size(), 2u);
+  std::map<int, int> expect{{opp[0], 5}, {opp[1], 5}, {s.produced[0], 7}, {s.produced[1], 7}};
+  EXPECT_EQ(Irregular(m), expect);
+  for (int v : s.produced) EXPECT_TRUE(v != opp[0] && v != opp[1]);
+  ExpectValid(m);
+  AggregationRequest ag;
+  ag.group = s.produced;
+  TypeChangeOutcome a = tc.Aggregate(ag);
+  ASSERT_TRUE(a) << a.status.reason;
+  EXPECT_EQ(a.resultVertex, c);
+  EXPECT_EQ(test::CanonicalFaces(m), faces);
+  ExpectValid(m);
+}
