@@ -432,3 +432,27 @@ TEST(Attributes, OptionalComponentsLikeCMeshO) {
     }
   }
 }
+
+// Custom attributes (unknown type) are copied: the split's new vertex takes w's value, each
+// new face its neighbour's; a flip and a collapse keep the survivors' own values.
+TEST(Attributes, CustomAttributesAreCopiedBySplits) {
+  TAMesh m;
+  TexturedPatch(m, 5);
+  auto vh = vcg::tri::Allocator<TAMesh>::AddPerVertexAttribute<int>(m, std::string("label"));
+  auto fh = vcg::tri::Allocator<TAMesh>::AddPerFaceAttribute<int>(m, std::string("region"));
+  for (size_t i = 0; i < m.vert.size(); ++i) vh[i] = int(1000 + i);
+  for (size_t i = 0; i < m.face.size(); ++i) fh[i] = int(5000 + i);
+  MeshEditor<TAMesh> ed(m);
+  VertexStar<TAMesh> s = ed.Star(0);
+  int created = -1;
+  ASSERT_TRUE(ed.Split(0, ed.Index(s.neighbors[1]), ed.Index(s.neighbors[4]), &created).ok);
+  auto vh2 = vcg::tri::Allocator<TAMesh>::GetPerVertexAttribute<int>(m, std::string("label"));
+  auto fh2 = vcg::tri::Allocator<TAMesh>::GetPerFaceAttribute<int>(m, std::string("region"));
+  EXPECT_EQ(vh2[size_t(created)], 1000);
+  auto* fb = &m.face[m.face.size() - 2];
+  auto* fa = &m.face[m.face.size() - 1];
+  EXPECT_EQ(fh2[fa], fh2[fa->FFp(2)]);
+  EXPECT_EQ(fh2[fb], fh2[fb->FFp(0)]);
+  EXPECT_NE(fh2[fa], fh2[fb]);
+  ExpectAffine(m);
+}

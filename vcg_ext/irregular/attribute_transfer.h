@@ -22,6 +22,10 @@
 //     positions; each new face takes the colour and quality of the old face it borders across
 //     its old edge ((w, w', a) that of (w, a, .), (w, b, w') that of (., b, w)); the vertex
 //     attributes of w and w' are interpolated at their new positions.
+//   * Custom per-vertex and per-face attributes (vcg's named attributes, of a type unknown
+//     here) cannot be interpolated: they are copied. A split's new vertex copies w's values and
+//     each new face those of the old face it borders; a flip's and a collapse's surviving
+//     elements keep their own values (the collapsed vertex's are dropped).
 //
 // Refusals, with the reason (dry runs report the same):
 //   * a texture seam: an edge whose two faces give one of its ends different texture
@@ -215,6 +219,7 @@ class AttributeTransfer {
     VertTex vtexW, vtexX;
     double uvArea = 0, uvAbs = 0;
     int faces = 0;
+    FaceType *nearA = nullptr, *nearB = nullptr;  ///< the old faces the new ones border
   };
 
   /// Before splitting the star's centre w into w at pw and w' at px; fa and fb are the old
@@ -223,6 +228,8 @@ class AttributeTransfer {
   SplitCarry BeforeSplit(const VertexStar<MeshType>& s, FaceType* fa, FaceType* fb, const CoordType& pw,
                          const CoordType& px) const {
     SplitCarry c;
+    c.nearA = fa;
+    c.nearB = fb;
     if (HasFaceColor()) c.colorA = fa->C(), c.colorB = fb->C();
     if (HasFaceQuality()) c.qualityA = fa->Q(), c.qualityB = fb->Q();
     if (!HasWedgeTex() && !HasVertexAttributes()) return c;
@@ -282,6 +289,13 @@ class AttributeTransfer {
     if (HasVertColor()) w->C() = c.colorW, x->C() = c.colorX;
     if (HasVertQuality()) w->Q() = c.qualityW, x->Q() = c.qualityX;
     if (HasVertTex()) w->T() = c.vtexW, x->T() = c.vtexX;
+    // Custom attributes: copied into the new elements only, so the journal need not save them
+    // (rolling back truncates the new elements).
+    for (auto& a : m_.vert_attr) a._handle->CopyValue(vcg::tri::Index(m_, x), vcg::tri::Index(m_, w), a._handle);
+    for (auto& a : m_.face_attr) {
+      a._handle->CopyValue(vcg::tri::Index(m_, fa), vcg::tri::Index(m_, c.nearA), a._handle);
+      a._handle->CopyValue(vcg::tri::Index(m_, fb), vcg::tri::Index(m_, c.nearB), a._handle);
+    }
     return CheckTextureFolds(changed, c.uvArea, c.faces ? c.uvAbs / c.faces : 0, opt);
   }
 
