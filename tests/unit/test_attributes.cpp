@@ -13,6 +13,8 @@
 
 #include <vcg_ext/irregular/atomic_ops.h>
 #include <vcg_ext/irregular/mesh_checks.h>
+#include <vcg_ext/irregular/relaxation.h>
+#include <vcg_ext/irregular/surface_projector.h>
 
 #include "test_mesh.h"
 #include "test_util.h"
@@ -61,9 +63,8 @@ void Paint(MeshT& m, float offsetAbove = 0, float seamY = 1e9f) {
   }
 }
 
-/// Every live corner's texture coordinate (and vertex texcoord, quality) equals the
-/// parametrisation at its vertex (+offsetAbove for faces above seamY); returns the number of
-/// corners checked.
+/// Every live corner's texture coordinate (and vertex texcoord) equals the parametrisation at
+/// its vertex (+offsetAbove for faces above seamY); returns the number of corners checked.
 template <class MeshT>
 int ExpectAffine(MeshT& m, float offsetAbove = 0, float seamY = 1e9f) {
   int n = 0;
@@ -81,9 +82,29 @@ int ExpectAffine(MeshT& m, float offsetAbove = 0, float seamY = 1e9f) {
     if (v.IsD()) continue;
     EXPECT_NEAR(v.T().U(), Param(v.P())[0], 1e-6);
     EXPECT_NEAR(v.T().V(), Param(v.P())[1], 1e-6);
-    EXPECT_NEAR(v.Q(), QualityAt(v.P()), 1e-5);
   }
   return n;
+}
+
+/// Colours and qualities are copied, never mixed: every live element's (colour, quality) is
+/// one the input had.
+template <class MeshT>
+std::set<std::tuple<int, int, int, float>> Palette(MeshT& m, bool faces) {
+  std::set<std::tuple<int, int, int, float>> p;
+  if (faces) {
+    for (auto& f : m.face)
+      if (!f.IsD()) p.insert({f.C()[0], f.C()[1], f.C()[2], f.Q()});
+  } else {
+    for (auto& v : m.vert)
+      if (!v.IsD()) p.insert({v.C()[0], v.C()[1], v.C()[2], v.Q()});
+  }
+  return p;
+}
+template <class MeshT>
+void ExpectCopiedValues(MeshT& m, const std::set<std::tuple<int, int, int, float>>& faces,
+                        const std::set<std::tuple<int, int, int, float>>& verts) {
+  for (auto& key : Palette(m, true)) EXPECT_TRUE(faces.count(key)) << "a face colour or quality was mixed";
+  for (auto& key : Palette(m, false)) EXPECT_TRUE(verts.count(key)) << "a vertex colour or quality was mixed";
 }
 
 /// Everything, attributes included, by index.
@@ -184,7 +205,10 @@ TEST(Attributes, CollapseInterpolatesAtTheTarget) {
           EXPECT_NEAR(f.WT(z).V(), mid[1], 1e-6);
         }
   EXPECT_EQ(corners, 8);  // valence 6 + 6 - 4
-  EXPECT_EQ(int(m.vert[size_t(v)].C()[0]), int(std::lround((int(cu[0]) + int(cv[0])) / 2.0)));
+  // colour and quality are copied from the end nearer the target: v's own at the midpoint
+  EXPECT_EQ(m.vert[size_t(v)].C(), cv);
+  EXPECT_NE(cu, cv);
+  EXPECT_EQ(m.vert[size_t(v)].Q(), QualityAt(pv));
   ExpectAffine(m);
 }
 
@@ -194,10 +218,16 @@ TEST(Attributes, SplitInterpolatesAtTheNewPositionsAndNewFacesTakeTheirNeighbour
   MeshEditor<TAMesh> ed(m);
   VertexStar<TAMesh> s = ed.Star(0);
   const int w = 0, a = ed.Index(s.neighbors[0]), b = ed.Index(s.neighbors[3]);
+  const vcg::Color4b cw = m.vert[size_t(w)].C();
+  const float qw = m.vert[size_t(w)].Q();
   int created = -1;
   ASSERT_TRUE(ed.Split(w, a, b, &created).ok);
   ASSERT_TRUE(CheckInvariants(m).ok) << CheckInvariants(m).reason;
   ExpectAffine(m);
+  for (int q : {w, created}) {
+    EXPECT_EQ(m.vert[size_t(q)].C(), cw) << "split vertices keep w's colour";
+    EXPECT_EQ(m.vert[size_t(q)].Q(), qw);
+  }
   // w and the new vertex moved apart (otherwise interpolation was not exercised)
   EXPECT_GT((m.vert[size_t(w)].P() - m.vert[size_t(created)].P()).Norm(), 0.1);
   auto* fb = &m.face[m.face.size() - 2];  // (w, b, w')
@@ -245,6 +275,7 @@ TEST(Attributes, AtomicPairMovesCarryTheTexture) {
   }
   ed.Commit();
   const auto snap = FullSnapshot(m);
+  const auto facePalette = Palette(m, true), vertPalette = Palette(m, false);
   int applied = 0;
   for (int dir = 0; dir < 6; ++dir) {
     auto cp = ed.Mark();
@@ -256,6 +287,7 @@ TEST(Attributes, AtomicPairMovesCarryTheTexture) {
     ++applied;
     ASSERT_TRUE(CheckInvariants(m).ok) << CheckInvariants(m).reason;
     ExpectAffine(m);
+    ExpectCopiedValues(m, facePalette, vertPalette);
     // a second move of the moved pair, then back to the start
     AtomicOutcome o2 = ops.MovePair57(o.irregular[0], o.irregular[1], dir);
     if (o2) ExpectAffine(m);
@@ -269,6 +301,7 @@ TEST(Attributes, RollbackRestoresEveryAttributeExactly) {
   TAMesh m;
   TexturedPatch(m, 8);
   const auto snap = FullSnapshot(m);
+  const auto facePalette = Palette(m, true), vertPalette = Palette(m, false);
   MeshEditor<TAMesh> ed(m);
   auto cp = ed.Mark();
   std::mt19937 rng(11);
@@ -295,6 +328,7 @@ TEST(Attributes, RollbackRestoresEveryAttributeExactly) {
   EXPECT_GT(refused, 10);
   ASSERT_TRUE(CheckInvariants(m).ok) << CheckInvariants(m).reason;
   ExpectAffine(m);
+  ExpectCopiedValues(m, facePalette, vertPalette);
   ed.RollbackTo(cp);
   EXPECT_EQ(FullSnapshot(m), snap);
 }
@@ -455,4 +489,40 @@ TEST(Attributes, CustomAttributesAreCopiedBySplits) {
   EXPECT_EQ(fh2[fb], fh2[fb->FFp(0)]);
   EXPECT_NE(fh2[fa], fh2[fb]);
   ExpectAffine(m);
+}
+
+// Relaxation moves vertices without changing the connectivity: re-sampled, the texture stays
+// on the surface (every corner still the parametrisation of its new position); without the
+// re-sampling it would slide with the vertices.
+TEST(Attributes, ResamplingAfterRelaxationKeepsTheTextureOnTheSurface) {
+  TAMesh m;
+  test::TMesh base;
+  test::HexPatch(base, 6);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> jitter(-0.2f, 0.2f);
+  for (auto& v : base.vert)
+    if (!vcg_ext::irregular::StarOf<test::TMesh>(&v).boundary) v.P() += vcg::Point3f(jitter(rng), jitter(rng), 0);
+  test::CopyWithAttributes(base, m);
+  Paint(m);
+  std::vector<int> region;
+  for (size_t i = 0; i < m.vert.size(); ++i)
+    if (m.vert[i].P().Norm() < 3.5f) region.push_back(int(i));
+  SurfaceProjector projector(m);
+  RelaxOptions ro;
+  ro.iterations = 5;
+  AttributeResampler<TAMesh> keep(m, region);
+  RelaxReport rep = LocalRelax(m, region, &projector, ro);
+  ASSERT_GT(rep.moved, 10);
+  EXPECT_GT(keep.Resample(), 10);
+  ExpectAffine(m);
+  // the control: the same relaxation without re-sampling leaves the texture behind
+  TAMesh m2;
+  test::CopyWithAttributes(base, m2);
+  Paint(m2);
+  SurfaceProjector projector2(m2);
+  LocalRelax(m2, region, &projector2, ro);
+  double worst = 0;
+  for (auto& f : m2.face)
+    for (int z = 0; z < 3; ++z) worst = std::max(worst, double((f.WT(z).P() - Param(f.P(z))).Norm()));
+  EXPECT_GT(worst, 1e-3);
 }

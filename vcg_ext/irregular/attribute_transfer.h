@@ -3,11 +3,14 @@
 // per-vertex colour, quality and texture coordinates.
 //
 // Rules (what each operation writes; every value not named here is left as it was):
-//   * Interpolation: a corner or vertex that moves to a new position takes the value the old
-//     surface had at that position: linear along the collapsed edge, barycentric inside the
-//     old face of the split vertex's star that contains the new position. On a mesh whose
-//     texture coordinates are an affine function of position (a planar parametrisation) the
-//     result is exactly that function at the new position.
+//   * Texture coordinates (per wedge and per vertex) are interpolated: a corner or vertex that
+//     moves to a new position takes the value the old surface had at that position: linear
+//     along the collapsed edge, barycentric in the face of the split vertex's old star closest
+//     to the new position. On a mesh whose texture coordinates are an affine function of
+//     position (a planar parametrisation) the result is exactly that function there.
+//   * Colours and qualities (per face and per vertex) are copied, never averaged: a quality
+//     that labels regions stays a label, a painted border stays sharp, and every value after
+//     an edit is one the input had.
 //   * Flip (x, y) -> (o0, o1): every corner of the two new faces takes the texture coordinate
 //     its vertex had in the old faces. Face colour and quality: both new faces take those of
 //     the larger old face. The diagonals of the quad cross at one point P, and each new face
@@ -16,12 +19,13 @@
 //     overlaps most. Values are copied, never averaged (a quality that labels regions stays
 //     a label).
 //   * Collapse u -> v, v moved to a point t of the way from v to u: the corner at v of every
-//     surviving face of both stars takes the texture coordinate at that point of the edge;
-//     v's vertex colour, quality and texture coordinate are interpolated the same way.
+//     surviving face of both stars takes the texture coordinate at that point of the edge, and
+//     so does v's vertex texture coordinate; v's colour and quality are those of the end
+//     nearer the target (v's own at the midpoint).
 //   * Split w -> (w, w'): the corners at w and w' take the texture coordinates at their new
-//     positions; each new face takes the colour and quality of the old face it borders across
-//     its old edge ((w, w', a) that of (w, a, .), (w, b, w') that of (., b, w)); the vertex
-//     attributes of w and w' are interpolated at their new positions.
+//     positions (and so do their vertex texture coordinates); w' copies w's colour and
+//     quality; each new face takes the colour and quality of the old face it borders across
+//     its old edge ((w, w', a) that of (w, a, .), (w, b, w') that of (., b, w)).
 //   * Custom per-vertex and per-face attributes (vcg's named attributes, of a type unknown
 //     here) cannot be interpolated: they are copied. A split's new vertex copies w's values and
 //     each new face those of the old face it borders; a flip's and a collapse's surviving
@@ -34,6 +38,9 @@
 //     together; interpolation cannot carry it.
 //   * a texture fold (geometric check, when GeometryOptions::checkFolds): a changed face whose
 //     texture triangle turns over or collapses relative to the faces it replaces.
+//
+// After a move that keeps the connectivity (relaxation), AttributeResampler gives each moved
+// vertex the texture coordinates of the surface before the move at its new position.
 //
 // Zero overhead: every function first asks vcglib whether the mesh has the component
 // (tri::HasPerWedgeTexCoord etc.: compile-time for static components, run-time for the
@@ -48,6 +55,8 @@
 #include <vector>
 
 #include <vcg/complex/complex.h>
+#include <vcg/space/distance3.h>
+#include <vcg/space/triangle3.h>
 
 #include "result.h"
 #include "topology.h"
@@ -77,7 +86,6 @@ class AttributeTransfer {
   bool HasVertColor() const { return vcg::tri::HasPerVertexColor(m_); }
   bool HasVertQuality() const { return vcg::tri::HasPerVertexQuality(m_); }
   bool HasVertTex() const { return vcg::tri::HasPerVertexTexCoord(m_); }
-  bool HasVertexAttributes() const { return HasVertColor() || HasVertQuality() || HasVertTex(); }
 
   // ------------------------------------------------------------------ seams (dry run)
   /// Ok unless edge z of f is a texture seam (see the header). O(1).
@@ -188,8 +196,9 @@ class AttributeTransfer {
       c.faces = int(star.size());
     }
     const double w[2] = {1 - c.t, c.t};
-    if (HasVertColor()) c.color = MixColor(std::vector<VertColor>{v->C(), u->C()}, w);
-    if (HasVertQuality()) c.quality = VertQuality(w[0] * v->Q() + w[1] * u->Q());
+    VertexType* nearer = c.t > 0.5 ? u : v;  // colour and quality are copied, not mixed
+    if (HasVertColor()) c.color = nearer->C();
+    if (HasVertQuality()) c.quality = nearer->Q();
     if (HasVertTex()) c.vtex = Mix(std::vector<VertTex>{v->T(), u->T()}, w);
     return c;
   }
@@ -214,8 +223,6 @@ class AttributeTransfer {
     std::vector<std::pair<VertexType*, WedgeTex>> ring;  ///< each neighbour's coordinate
     FaceColor colorA, colorB;
     FaceQuality qualityA = FaceQuality(), qualityB = FaceQuality();
-    VertColor colorW, colorX;
-    VertQuality qualityW = VertQuality(), qualityX = VertQuality();
     VertTex vtexW, vtexX;
     double uvArea = 0, uvAbs = 0;
     int faces = 0;
@@ -232,40 +239,74 @@ class AttributeTransfer {
     c.nearB = fb;
     if (HasFaceColor()) c.colorA = fa->C(), c.colorB = fb->C();
     if (HasFaceQuality()) c.qualityA = fa->Q(), c.qualityB = fb->Q();
-    if (!HasWedgeTex() && !HasVertexAttributes()) return c;
-    int fw = 0, fx = 0;
-    CoordType bw = Locate(s, pw, &fw), bx = Locate(s, px, &fx);
-    auto corner = [&](int k, int j) { return (s.corners[size_t(k)].z + j) % 3; };  // j = 0: w
+    if (!HasWedgeTex() && !HasVertTex()) return c;
+    const std::vector<FrozenFace> star = Freeze(s);
+    const Sampled w = Sample(star, pw), x = Sample(star, px);
+    c.texW = w.tex, c.vtexW = w.vtex;
+    c.texX = x.tex, c.vtexX = x.vtex;
     if (HasWedgeTex()) {
-      auto tex = [&](int k, const CoordType& b) {
-        FaceType* f = s.corners[size_t(k)].f;
-        const double w[3] = {b[0], b[1], b[2]};
-        return Mix(std::vector<WedgeTex>{f->WT(corner(k, 0)), f->WT(corner(k, 1)), f->WT(corner(k, 2))}, w);
-      };
-      c.texW = tex(fw, bw);
-      c.texX = tex(fx, bx);
-      for (size_t k = 0; k < s.corners.size(); ++k) {
-        FaceType* f = s.corners[k].f;
-        c.ring.push_back({f->V(corner(int(k), 1)), f->WT(corner(int(k), 1))});
-        c.ring.push_back({f->V(corner(int(k), 2)), f->WT(corner(int(k), 2))});
-        AddUV(f, c.uvArea, c.uvAbs);
-      }
+      for (const FrozenFace& f : star)
+        for (int j = 1; j < 3; ++j) c.ring.push_back({f.v[j], f.tex[j]});
+      for (auto& k : s.corners) AddUV(k.f, c.uvArea, c.uvAbs);
       c.faces = int(s.corners.size());
     }
-    auto verts = [&](int k) {
-      FaceType* f = s.corners[size_t(k)].f;
-      return std::vector<VertexType*>{f->V(corner(k, 0)), f->V(corner(k, 1)), f->V(corner(k, 2))};
-    };
-    auto vertexValues = [&](int k, const CoordType& b, VertColor& col, VertQuality& q, VertTex& t) {
-      std::vector<VertexType*> vs = verts(k);
-      const double w[3] = {b[0], b[1], b[2]};
-      if (HasVertColor()) col = MixColor(std::vector<VertColor>{vs[0]->C(), vs[1]->C(), vs[2]->C()}, w);
-      if (HasVertQuality()) q = VertQuality(w[0] * vs[0]->Q() + w[1] * vs[1]->Q() + w[2] * vs[2]->Q());
-      if (HasVertTex()) t = Mix(std::vector<VertTex>{vs[0]->T(), vs[1]->T(), vs[2]->T()}, w);
-    };
-    vertexValues(fw, bw, c.colorW, c.qualityW, c.vtexW);
-    vertexValues(fx, bx, c.colorX, c.qualityX, c.vtexX);
     return c;
+  }
+
+  // ------------------------------------------------------------------ the old surface
+  /// A face of a star as it was: corners ordered from the centre, positions and texture
+  /// coordinates.
+  struct FrozenFace {
+    VertexType* v[3];
+    CoordType p[3];
+    WedgeTex tex[3];
+    VertTex vtex[3];
+  };
+  /// The texture coordinates of the old surface at one point.
+  struct Sampled {
+    WedgeTex tex;
+    VertTex vtex;
+  };
+
+  /// Copies the faces of a star. O(valence).
+  std::vector<FrozenFace> Freeze(const VertexStar<MeshType>& s) const {
+    std::vector<FrozenFace> out;
+    for (auto& k : s.corners) {
+      FrozenFace f;
+      for (int j = 0; j < 3; ++j) {
+        const int z = (k.z + j) % 3;
+        f.v[j] = k.f->V(z);
+        f.p[j] = k.f->cP(z);
+        if (HasWedgeTex()) f.tex[j] = k.f->WT(z);
+        if (HasVertTex()) f.vtex[j] = f.v[j]->T();
+      }
+      out.push_back(f);
+    }
+    return out;
+  }
+
+  /// The attributes of the frozen surface at q: barycentric interpolation in the face closest
+  /// to q (q projected on it; a point outside every face takes the closest point of the
+  /// closest face, so nothing is extrapolated). O(faces).
+  Sampled Sample(const std::vector<FrozenFace>& faces, const CoordType& q) const {
+    size_t best = 0;
+    double bestDist = 1e300;
+    CoordType bary(1, 0, 0);
+    for (size_t k = 0; k < faces.size(); ++k) {
+      const FrozenFace& f = faces[k];
+      vcg::Triangle3<ScalarType> t(f.p[0], f.p[1], f.p[2]);
+      ScalarType dist;
+      CoordType closest;
+      vcg::TrianglePointDistance(t, q, dist, closest);
+      if (double(dist) < bestDist) bestDist = double(dist), best = k, bary = Barycentric(f.p, closest);
+    }
+    Sampled r;
+    if (faces.empty()) return r;
+    const FrozenFace& f = faces[best];
+    const double w[3] = {bary[0], bary[1], bary[2]};
+    if (HasWedgeTex()) r.tex = Mix(std::vector<WedgeTex>{f.tex[0], f.tex[1], f.tex[2]}, w);
+    if (HasVertTex()) r.vtex = Mix(std::vector<VertTex>{f.vtex[0], f.vtex[1], f.vtex[2]}, w);
+    return r;
   }
 
   /// After the split: the new faces fa = (w, w', a), fb = (w, b, w'), every face of the old
@@ -286,8 +327,7 @@ class AttributeTransfer {
         }
     if (HasFaceColor()) fa->C() = c.colorA, fb->C() = c.colorB;
     if (HasFaceQuality()) fa->Q() = c.qualityA, fb->Q() = c.qualityB;
-    if (HasVertColor()) w->C() = c.colorW, x->C() = c.colorX;
-    if (HasVertQuality()) w->Q() = c.qualityW, x->Q() = c.qualityX;
+    // colour and quality: x->ImportData(*w) copied w's
     if (HasVertTex()) w->T() = c.vtexW, x->T() = c.vtexX;
     // Custom attributes: copied into the new elements only, so the journal need not save them
     // (rolling back truncates the new elements).
@@ -331,32 +371,17 @@ class AttributeTransfer {
     return Result::Ok();
   }
 
-  /// Barycentric coordinates of q (projected on the face's plane) in the face of the star
-  /// that contains it best (the largest smallest coordinate); negative coordinates are
-  /// clamped so colours are never extrapolated. *face receives the corner index.
-  /// Coordinates are ordered from the centre: (centre, V(z+1), V(z+2)).
-  static CoordType Locate(const VertexStar<MeshType>& s, const CoordType& q, int* face) {
-    CoordType best(1, 0, 0);
-    double bestMin = -1e300;
-    *face = 0;
-    for (size_t k = 0; k < s.corners.size(); ++k) {
-      const FaceType* f = s.corners[k].f;
-      const int z = s.corners[k].z;
-      const CoordType p0 = f->cP(z), p1 = f->cP((z + 1) % 3), p2 = f->cP((z + 2) % 3);
-      const CoordType n = (p1 - p0) ^ (p2 - p0);
-      const double nn = double(n.SquaredNorm());
-      if (nn <= 0) continue;
-      CoordType b(ScalarType(double(((p1 - q) ^ (p2 - q)).dot(n)) / nn),
-                  ScalarType(double(((p2 - q) ^ (p0 - q)).dot(n)) / nn), ScalarType(0));
-      b[2] = 1 - b[0] - b[1];
-      const double mn = std::min({double(b[0]), double(b[1]), double(b[2])});
-      if (mn > bestMin) bestMin = mn, best = b, *face = int(k);
-    }
-    if (bestMin < 0) {
-      for (int i = 0; i < 3; ++i) best[i] = std::max(best[i], ScalarType(0));
-      best /= best[0] + best[1] + best[2];
-    }
-    return best;
+  /// Barycentric coordinates of q (a point of the triangle's plane) in triangle p, clamped
+  /// to the triangle against rounding.
+  static CoordType Barycentric(const CoordType (&p)[3], const CoordType& q) {
+    const CoordType n = (p[1] - p[0]) ^ (p[2] - p[0]);
+    const double nn = double(n.SquaredNorm());
+    if (nn <= 0) return CoordType(1, 0, 0);
+    CoordType b(ScalarType(double(((p[1] - q) ^ (p[2] - q)).dot(n)) / nn),
+                ScalarType(double(((p[2] - q) ^ (p[0] - q)).dot(n)) / nn), ScalarType(0));
+    b[2] = 1 - b[0] - b[1];
+    for (int i = 0; i < 3; ++i) b[i] = std::max(b[i], ScalarType(0));
+    return b / (b[0] + b[1] + b[2]);
   }
 
   /// Weighted sum of texture coordinates (the texture index of the first).
@@ -369,19 +394,60 @@ class AttributeTransfer {
     r.V() = typename Tex::ScalarType(v);
     return r;
   }
-  /// Weighted sum of colours, rounded to the nearest channel value.
-  template <class Color, size_t N>
-  static Color MixColor(const std::vector<Color>& c, const double (&w)[N]) {
-    Color r = c[0];
-    for (int ch = 0; ch < 4; ++ch) {
-      double s = 0;
-      for (size_t i = 0; i < N; ++i) s += w[i] * double(c[i][ch]);
-      r[ch] = typename Color::ScalarType(std::lround(s));
+  MeshType& m_;
+};
+
+/// Carries attributes through moves that keep the connectivity (relaxation, paper sec. 8):
+/// each moved vertex takes the values the surface had, before the move, at its new position,
+/// so a texture stays where it was on the surface instead of sliding with the vertices.
+/// Usage: construct on the vertices that may move, move them, call Resample().
+/// Only texture coordinates are re-sampled (colours and qualities stay with their vertex, as
+/// the edits copy them). A vertex with a texture seam at it keeps its wedge texture
+/// coordinates (which side of the seam would be ambiguous).
+/// O(sum of the valences of the moving vertices) for each of the two calls.
+template <class MeshType>
+class AttributeResampler {
+ public:
+  typedef typename MeshType::VertexType VertexType;
+  typedef typename MeshType::CoordType CoordType;
+  typedef AttributeTransfer<MeshType> Transfer;
+
+  AttributeResampler(MeshType& m, const std::vector<int>& moving) : m_(m), attr_(m) {
+    if (!attr_.HasWedgeTex() && !attr_.HasVertTex()) return;  // nothing to carry
+    for (int v : moving) {
+      VertexType* vp = &m.vert[size_t(v)];
+      if (vp->IsD() || vp->cVFp() == nullptr) continue;
+      VertexStar<MeshType> s = StarOf<MeshType>(vp);
+      if (!s.manifold || s.corners.empty()) continue;
+      entries_.push_back(Entry{v, vp->P(), attr_.Freeze(s), bool(attr_.StarSeamless(s))});
     }
-    return r;
   }
 
+  /// Writes the re-sampled values of every vertex that moved; returns how many moved.
+  int Resample() {
+    int moved = 0;
+    for (const Entry& e : entries_) {
+      VertexType* vp = &m_.vert[size_t(e.v)];
+      if (vp->IsD() || vp->P() == e.p) continue;
+      const typename Transfer::Sampled s = attr_.Sample(e.star, vp->P());
+      if (attr_.HasWedgeTex() && e.seamless)
+        for (auto& c : StarOf<MeshType>(vp).corners) c.f->WT(c.z) = s.tex;
+      if (attr_.HasVertTex()) vp->T() = s.vtex;
+      ++moved;
+    }
+    return moved;
+  }
+
+ private:
+  struct Entry {
+    int v;
+    CoordType p;  ///< where it was
+    std::vector<typename Transfer::FrozenFace> star;
+    bool seamless;
+  };
   MeshType& m_;
+  Transfer attr_;
+  std::vector<Entry> entries_;
 };
 
 }  // namespace irregular
