@@ -11,7 +11,7 @@ import numpy as np
 import pymeshlab
 
 import fi_oracle as fo
-from fi_pm import ATOMIC, MOVE_PAIR, apply, refuse, select, selected, tri
+from fi_pm import ATOMIC, MOVE_PAIR, apply, corpus, refuse, select, selected, tri
 
 # The parametrisation MeshLab computes per vertex, then copies to the wedges.
 U_FN, V_FN = "0.013*x+0.005*y+0.2", "-0.004*x+0.011*y+0.6"
@@ -166,3 +166,32 @@ def test_a_texture_seam_is_refused_and_the_mesh_unchanged():
     refuse(ms, ATOMIC, ["texture seam"], operation=6, relax=False, colorize=False)
     refuse(ms, ATOMIC, ["texture seam"], operation=7, relax=False, colorize=False)
     assert np.array_equal(ms.current_mesh().wedge_tex_coord_matrix(), wt)
+
+
+def test_curved_corpus_mesh_keeps_a_continuous_texture():
+    """knot1 (curved, closed) textured by a linear function of position: a flip and a collapse
+    keep every corner exactly on it (a collapse moves to the edge's midpoint, where linear
+    interpolation is exact); a split puts its vertices off the surface's faces, so there the
+    texture coordinate is the function at the closest point of the old faces: close, and the
+    same at every corner of a vertex (no seam made)."""
+    knot_pair = (206, 2273)  # (v5, v7), regular all round (see test_atomic.py)
+    for d, exact in [(1, True), (2, True), (0, False), (5, False)]:
+        ms = pymeshlab.MeshSet()
+        ms.load_new_mesh(corpus("knot1.off"))
+        ms.compute_texcoord_by_function_per_vertex(u=U_FN, v=V_FN)
+        ms.compute_texcoord_transfer_vertex_to_wedge()
+        check_texture(ms)
+        select(ms, list(knot_pair))
+        apply(ms, ATOMIC, operation=0, direction=d, relax=False, colorize=False)
+        m = ms.current_mesh()
+        v, f, wt = m.vertex_matrix(), m.face_matrix(), m.wedge_tex_coord_matrix()
+        per_vertex = {}
+        for corner, vi in enumerate(f.reshape(-1)):
+            per_vertex.setdefault(int(vi), set()).add(tuple(np.round(wt[corner], 7)))
+        assert all(len(s) == 1 for s in per_vertex.values()), "direction %d made a texture seam" % d
+        if exact:
+            check_texture(ms)
+        else:
+            edge = np.linalg.norm(v[f[:, 0]] - v[f[:, 1]], axis=1).mean()
+            err = np.abs(wt - param(v[f.reshape(-1)])).max()
+            assert 0 < err < 0.013 * 0.25 * edge, "split %d: texture off by %g (edge %g)" % (d, err, edge)

@@ -526,3 +526,30 @@ TEST(Attributes, ResamplingAfterRelaxationKeepsTheTextureOnTheSurface) {
     for (int z = 0; z < 3; ++z) worst = std::max(worst, double((f.WT(z).P() - Param(f.P(z))).Norm()));
   EXPECT_GT(worst, 1e-3);
 }
+
+// A flip that is fine in space but would turn a texture triangle over is refused (a geometric
+// check, like the fold check in space: the dry run, topology only, accepts it), unchanged mesh.
+TEST(Attributes, TextureFoldIsRefusedAndRolledBack) {
+  TAMesh m;
+  TexturedPatch(m, 5);
+  MeshEditor<TAMesh> ed(m);
+  const int x = 0, y = ed.Index(ed.Star(0).neighbors[0]);
+  int o[2];
+  ASSERT_TRUE(ed.Opposites(x, y, o));
+  // x's texture coordinate (at all its corners) moves past the diagonal (o0, o1) toward y:
+  // the old faces keep their orientation, the new face (x, o1, o0) would turn over.
+  auto at = [&](int i) { return Param(m.vert[size_t(i)].P()); };
+  const vcg::Point2f mid = (at(o[0]) + at(o[1])) / 2, moved = mid + (at(y) - mid) * 0.3f;
+  for (auto& f : m.face)
+    for (int z = 0; z < 3; ++z)
+      if (int(vcg::tri::Index(m, f.V(z))) == x) f.WT(z).P() = moved;
+  EXPECT_TRUE(ed.CanFlip(x, y).ok);
+  const auto snap = FullSnapshot(m);
+  Result r = ed.Flip(x, y);
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.reason.find("fold the texture"), std::string::npos) << r.reason;
+  EXPECT_EQ(FullSnapshot(m), snap);
+  // with the fold checks off, the same flip goes through
+  ed.geometry().checkFolds = false;
+  EXPECT_TRUE(ed.Flip(x, y).ok);
+}

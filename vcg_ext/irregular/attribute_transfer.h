@@ -162,7 +162,7 @@ class AttributeTransfer {
       if (HasFaceColor()) h->C() = c.color;
       if (HasFaceQuality()) h->Q() = c.quality;
     }
-    return CheckTextureFolds({f, g}, c.uvArea, c.uvAbs / 2, opt);
+    return CheckTextureFolds({f, g}, c.uvArea, c.uvAbs, 2, opt);
   }
 
   // ------------------------------------------------------------------ collapse
@@ -214,7 +214,7 @@ class AttributeTransfer {
     if (HasVertColor()) v->C() = c.color;
     if (HasVertQuality()) v->Q() = c.quality;
     if (HasVertTex()) v->T() = c.vtex;
-    return CheckTextureFolds(changed, c.uvArea, c.faces ? c.uvAbs / c.faces : 0, opt);
+    return CheckTextureFolds(changed, c.uvArea, c.uvAbs, c.faces, opt);
   }
 
   // ------------------------------------------------------------------ split
@@ -336,7 +336,7 @@ class AttributeTransfer {
       a._handle->CopyValue(vcg::tri::Index(m_, fa), vcg::tri::Index(m_, c.nearA), a._handle);
       a._handle->CopyValue(vcg::tri::Index(m_, fb), vcg::tri::Index(m_, c.nearB), a._handle);
     }
-    return CheckTextureFolds(changed, c.uvArea, c.faces ? c.uvAbs / c.faces : 0, opt);
+    return CheckTextureFolds(changed, c.uvArea, c.uvAbs, c.faces, opt);
   }
 
  private:
@@ -356,12 +356,17 @@ class AttributeTransfer {
     abs += std::fabs(a);
   }
 
-  /// Every changed face's texture triangle keeps the orientation of the region it replaces
-  /// (sign of refSum) and a share opt.minAreaRatio of its mean texture area refMean.
+  /// Every changed face's texture triangle keeps the orientation of the `faces` old faces it
+  /// replaces (signed texture areas summing to refSum, absolute ones to refAbs) and a share
+  /// opt.minAreaRatio of their mean texture area. Where the old faces already disagree in
+  /// orientation the texture is folded there before the edit (e.g. a planar projection on a
+  /// curved surface): there is no orientation to keep, and no check.
   template <class Options>
-  Result CheckTextureFolds(const std::vector<FaceType*>& changed, double refSum, double refMean,
+  Result CheckTextureFolds(const std::vector<FaceType*>& changed, double refSum, double refAbs, int faces,
                            const Options& opt) const {
-    if (!HasWedgeTex() || !opt.checkFolds || refSum == 0) return Result::Ok();
+    if (!HasWedgeTex() || !opt.checkFolds || refSum == 0 || faces == 0) return Result::Ok();
+    if (std::fabs(refSum) < refAbs * (1 - 1e-9)) return Result::Ok();  // already folded
+    const double refMean = refAbs / faces;
     for (FaceType* f : changed) {
       if (f->IsD()) continue;
       const double a = UVArea(f);
