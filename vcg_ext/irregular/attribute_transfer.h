@@ -31,13 +31,16 @@
 //     each new face those of the old face it borders; a flip's and a collapse's surviving
 //     elements keep their own values (the collapsed vertex's are dropped).
 //
-// Refusals, with the reason (dry runs report the same):
-//   * a texture seam: an edge whose two faces give one of its ends different texture
-//     coordinates (or use different textures, WT().N()). A flip of a seam edge, or a collapse
-//     or split of a vertex with a seam edge, would glue two unrelated parts of the texture
-//     together; interpolation cannot carry it.
-//   * a texture fold (geometric check, when GeometryOptions::checkFolds): a changed face whose
-//     texture triangle turns over or collapses relative to the faces it replaces.
+// Refusals, with the reason:
+//   * a texture seam (the dry runs CanFlip / CanCollapse / CanSplit report it too): an edge
+//     whose two faces give one of its ends different texture coordinates (or use different
+//     textures, WT().N()). A flip of a seam edge, or a collapse or split of a vertex with a
+//     seam edge, would glue two unrelated parts of the texture together; interpolation cannot
+//     carry it.
+//   * a texture fold (a geometric check, when GeometryOptions::checkFolds; like the fold check
+//     in space, only the operation finds it): a changed face whose texture triangle turns over
+//     or collapses relative to the faces it replaces. Where those faces already disagree in
+//     orientation (a texture folded before the edit) there is nothing to keep and no check.
 //
 // After a move that keeps the connectivity (relaxation), AttributeResampler gives each moved
 // vertex the texture coordinates of the surface before the move at its new position.

@@ -13,8 +13,9 @@
 // closed surfaces, and a boundary vertex is regular at valence 4, so they act away from it.
 // Every operation is journaled (journal.h): a refused operation, including one refused by the
 // geometric check after trying it, leaves the mesh exactly as it was.
-// Texture coordinates, face and vertex colours and qualities are carried by interpolation
-// (attribute_transfer.h); an edit across a texture seam is refused by the dry run too.
+// Attributes are carried (attribute_transfer.h): texture coordinates by interpolation, face
+// and vertex colours and qualities by copy; an edit across a texture seam is refused, by the
+// dry run too.
 #pragma once
 
 #include <algorithm>
