@@ -74,12 +74,21 @@ int DataMaskOf(unsigned components) {
   return mask;
 }
 
-/// What changes, for MeshLab's render buffers (postCondition).
+/// What changes, for MeshLab's render buffers (postCondition). A filter that edits
+/// connectivity changes geometry and topology, and rewrites the attributes the edits carry by
+/// interpolation (vcg_ext/irregular/attribute_transfer.h): wedge and vertex texture
+/// coordinates, face and vertex colour and quality. They are declared updated, so MeshLab
+/// refreshes them; they are not dropped: the filter needs none of them (DataMaskOf asks only
+/// for what it writes) and carries whichever the mesh has. Not MM_ALL, which would also
+/// claim the camera, the transform and wedge normals and colours (CMeshO has none) and, in
+/// MeshLab's words, "could add unwanted data to the layer".
 template <class MeshModelT>
 int PostConditionOf(const FilterSpec& spec) {
   if (!spec.changesConnectivity)
     return MeshModelT::MM_VERTCOLOR | MeshModelT::MM_VERTQUALITY | MeshModelT::MM_VERTFLAGSELECT;
-  return MeshModelT::MM_ALL;
+  return MeshModelT::MM_GEOMETRY_AND_TOPOLOGY_CHANGE | MeshModelT::MM_VERTCOLOR | MeshModelT::MM_VERTQUALITY |
+         MeshModelT::MM_VERTTEXCOORD | MeshModelT::MM_FACECOLOR | MeshModelT::MM_FACEQUALITY |
+         MeshModelT::MM_WEDGTEXCOORD | MeshModelT::MM_VERTFLAGSELECT | MeshModelT::MM_FACEFLAGSELECT;
 }
 
 /// The FilterContext of a MeshModel; logging goes through the adapter's logger.

@@ -31,6 +31,10 @@ void FinishEdit(CMeshO& m) {
 }
 
 std::string InputDefect(CMeshO& m) {
+  // Attributes are not defects: texture coordinates, face and vertex colours and qualities
+  // are carried through every edit (vcg_ext/irregular/attribute_transfer.h); what cannot be
+  // carried (an edit across a texture seam or between two textures) is refused by that edit,
+  // with the reason, not here for the whole mesh.
   irr::Result ok = irr::DiagnoseInput(m).Verdict();
   return ok ? std::string() : ok.reason;
 }

@@ -98,6 +98,43 @@ inline void HexPatch(TMesh& m, int radius) {
   UpdateTopology(m);
 }
 
+// ---------------------------------------------------------------- meshes with attributes
+// For attribute_transfer.h: TAMesh has per-wedge texture coordinates, face colour and quality,
+// vertex colour, quality and texture coordinate as static components; TOMesh has them as
+// optional components, the way MeshLab's CMeshO does (enabled at run time).
+class TAVertex;
+class TAFace;
+struct TAUsedTypes : public vcg::UsedTypes<vcg::Use<TAVertex>::AsVertexType, vcg::Use<TAFace>::AsFaceType> {};
+class TAVertex : public vcg::Vertex<TAUsedTypes, vcg::vertex::Coord3f, vcg::vertex::Normal3f, vcg::vertex::VFAdj,
+                                    vcg::vertex::Color4b, vcg::vertex::Qualityf, vcg::vertex::TexCoord2f,
+                                    vcg::vertex::BitFlags, vcg::vertex::Mark> {};
+class TAFace : public vcg::Face<TAUsedTypes, vcg::face::VertexRef, vcg::face::FFAdj, vcg::face::VFAdj,
+                                vcg::face::Normal3f, vcg::face::WedgeTexCoord2f, vcg::face::Color4b,
+                                vcg::face::Qualityf, vcg::face::BitFlags, vcg::face::Mark> {};
+class TAMesh : public vcg::tri::TriMesh<std::vector<TAVertex>, std::vector<TAFace>> {};
+
+class TOVertex;
+class TOFace;
+struct TOUsedTypes : public vcg::UsedTypes<vcg::Use<TOVertex>::AsVertexType, vcg::Use<TOFace>::AsFaceType> {};
+class TOVertex : public vcg::Vertex<TOUsedTypes, vcg::vertex::InfoOcf, vcg::vertex::Coord3f, vcg::vertex::BitFlags,
+                                    vcg::vertex::Normal3f, vcg::vertex::Qualityf, vcg::vertex::Color4b,
+                                    vcg::vertex::VFAdjOcf, vcg::vertex::MarkOcf, vcg::vertex::TexCoordfOcf> {};
+class TOFace : public vcg::Face<TOUsedTypes, vcg::face::InfoOcf, vcg::face::VertexRef, vcg::face::BitFlags,
+                                vcg::face::Normal3f, vcg::face::QualityfOcf, vcg::face::MarkOcf, vcg::face::Color4bOcf,
+                                vcg::face::FFAdjOcf, vcg::face::VFAdjOcf, vcg::face::WedgeTexCoordfOcf> {};
+class TOMesh : public vcg::tri::TriMesh<vcg::vertex::vector_ocf<TOVertex>, vcg::face::vector_ocf<TOFace>> {};
+
+/// A copy of a TMesh (positions and faces) in a mesh type with attributes, adjacency rebuilt.
+/// Optional components (TOMesh) must be enabled before: FF, VF adjacency at least.
+template <class MeshT>
+inline void CopyWithAttributes(TMesh& src, MeshT& m) {
+  vcg::tri::Append<MeshT, TMesh>::MeshCopy(m, src);
+  vcg::tri::UpdateTopology<MeshT>::FaceFace(m);
+  vcg::tri::UpdateTopology<MeshT>::VertexFace(m);
+  vcg::tri::UpdateBounding<MeshT>::Box(m);
+  vcg::tri::UpdateNormal<MeshT>::PerFaceNormalized(m);
+}
+
 inline std::string DataFile(const std::string& name) { return std::string(FI_DATA_DIR) + "/" + name; }
 
 /// Loads a corpus mesh (OFF); returns false if the file is missing.

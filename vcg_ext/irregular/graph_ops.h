@@ -13,6 +13,9 @@
 // closed surfaces, and a boundary vertex is regular at valence 4, so they act away from it.
 // Every operation is journaled (journal.h): a refused operation, including one refused by the
 // geometric check after trying it, leaves the mesh exactly as it was.
+// Attributes are carried (attribute_transfer.h): texture coordinates by interpolation, face
+// and vertex colours and qualities by copy; an edit across a texture seam is refused, by the
+// dry run too.
 #pragma once
 
 #include <algorithm>
@@ -24,6 +27,7 @@
 #include <vcg/complex/complex.h>
 #include <vcg/simplex/face/topology.h>
 
+#include "attribute_transfer.h"
 #include "journal.h"
 #include "result.h"
 #include "topology.h"
@@ -52,7 +56,7 @@ class MeshEditor {
 
   /// Precondition: FF and VF adjacency are up to date (vcg UpdateTopology FaceFace and
   /// VertexFace) on a manifold, consistently oriented triangle mesh.
-  explicit MeshEditor(MeshType& m, GeometryOptions g = GeometryOptions()) : m_(m), journal_(m), geom_(g) {}
+  explicit MeshEditor(MeshType& m, GeometryOptions g = GeometryOptions()) : m_(m), journal_(m), geom_(g), attr_(m) {}
 
   MeshType& Mesh() { return m_; }
   Journal& journal() { return journal_; }
@@ -97,6 +101,8 @@ class MeshEditor {
       return Fail("flipping edge (", x, ", ", y, ") would duplicate the existing edge (", o[0], ", ", o[1], ")");
     if (Valence(x) <= 3 || Valence(y) <= 3)
       return Fail("flipping edge (", x, ", ", y, ") would leave a vertex of valence 2");
+    Result seam = attr_.EdgeSeamless(c.f, c.z);  // attributes: the flip would mix the seam's sides
+    if (!seam) return Fail("flipping edge (", x, ", ", y, ") would mix the two sides of a texture seam: ", seam.reason);
     return Result::Ok();
   }
 
@@ -115,6 +121,7 @@ class MeshEditor {
     Opposites(x, y, o);
     const CoordType ref = RegionNormal({f, g});
     const ScalarType refArea = (Area(f) + Area(g)) / 2;
+    const auto carried = attr_.BeforeFlip(f, z);  // attributes: texcoords by vertex, colour
     // FlipEdge rewires f, g and the FF slots of the two outer faces across f's edge z+1 and
     // g's edge w+1.
     journal_.SaveFace(f);
@@ -126,6 +133,7 @@ class MeshEditor {
     UpdateNormal(g);
     for (int v : {x, y, o[0], o[1]}) RelinkVF(V(v));
     Result geo = CheckGeometry({f, g}, ref, refArea);
+    if (geo) geo = attr_.AfterFlip(carried, f, g, geom_);
     if (!geo) {
       RollbackTo(cp);
       return Fail("flipping edge (", x, ", ", y, ") ", geo.reason);
@@ -153,6 +161,9 @@ class MeshEditor {
       return Fail("collapsing edge (", u, ", ", v, ") would leave a vertex of valence 2");
     if (su.Valence() + sv.Valence() - 4 < 3)
       return Fail("collapsing edge (", u, ", ", v, ") would leave a vertex of valence < 3");
+    Result seam = attr_.StarSeamless(su);  // attributes: interpolation needs one texture around u, v
+    if (seam) seam = attr_.StarSeamless(sv);
+    if (!seam) return Fail("collapsing edge (", u, ", ", v, ") cannot carry the texture: ", seam.reason);
     return Result::Ok();
   }
 
@@ -179,6 +190,8 @@ class MeshEditor {
     if (a == b) return Fail("a vertex split needs two different edges of vertex ", w);
     if (s.IndexOf(V(a)) < 0 || s.IndexOf(V(b)) < 0)
       return Fail("vertices ", a, " and ", b, " must both be neighbours of vertex ", w);
+    Result seam = attr_.StarSeamless(s);  // attributes: interpolation needs one texture around w
+    if (!seam) return Fail("splitting vertex ", w, " cannot carry the texture: ", seam.reason);
     return Result::Ok();
   }
 
@@ -319,6 +332,7 @@ class MeshEditor {
       refArea += Area(f);
     }
     refArea /= ScalarType(region.size());
+    const auto carried = attr_.BeforeCollapse(u, v, f0, region, target);  // attributes at target
 
     // Glue the outer neighbours of f0 across its edges (v,b) and (b,u), and of f1 across
     // (u,a) and (a,v): each pair becomes one edge once f0, f1 vanish.
@@ -375,6 +389,7 @@ class MeshEditor {
         dead->VFi(z) = -1;
       }
     Result geo = CheckGeometry(changed, ref, refArea);
+    if (geo) geo = attr_.AfterCollapse(carried, v, changed, geom_);
     if (!geo) {
       RollbackTo(cp);
       return geo;
@@ -417,6 +432,7 @@ class MeshEditor {
     c2 += a->P();
     c2 /= ScalarType(g2.size() + 1);
     const CoordType p = w->P();
+    const auto carried = attr_.BeforeSplit(st, g1.front().f, g1.back().f, p + (c1 - p) * s, p + (c2 - p) * s);
 
     x->ImportData(*w);
     x->ClearS();
@@ -470,6 +486,7 @@ class MeshEditor {
     x->VFi() = 1;
     for (VertexType* q : {w, x, a, b}) RelinkVF(q);
     Result geo = CheckGeometry(changed, ref, refArea);
+    if (geo) geo = attr_.AfterSplit(carried, w, x, fa, fb, changed, geom_);
     if (!geo) {
       RollbackTo(cp);
       return geo;
@@ -481,6 +498,7 @@ class MeshEditor {
   MeshType& m_;
   Journal journal_;
   GeometryOptions geom_;
+  AttributeTransfer<MeshType> attr_;
 };
 
 }  // namespace irregular

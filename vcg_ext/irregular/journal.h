@@ -7,6 +7,11 @@
 //
 // Elements are recorded by index, not pointer, because adding elements may reallocate the
 // vertex and face vectors (vcg's Allocator then fixes the mesh's own pointers, not ours).
+//
+// Attributes (attribute_transfer.h): when the mesh has them, a saved face also keeps its wedge
+// texture coordinates, colour and quality, and a saved vertex its colour, quality and texture
+// coordinate, in separate logs, so a mesh without them pays nothing (vcglib's HasPer...
+// checks: compile-time for static components, run-time for optional ones).
 #pragma once
 
 #include <cstddef>
@@ -27,6 +32,7 @@ class EditJournal {
   /// A point in the journal to roll back to.
   struct Checkpoint {
     size_t faceLog = 0, vertLog = 0, faces = 0, verts = 0;
+    size_t faceAttrLog = 0, vertAttrLog = 0;
     int fn = 0, vn = 0;
   };
 
@@ -36,6 +42,8 @@ class EditJournal {
     Checkpoint c;
     c.faceLog = faceLog_.size();
     c.vertLog = vertLog_.size();
+    c.faceAttrLog = faceAttrLog_.size();
+    c.vertAttrLog = vertAttrLog_.size();
     c.faces = m_.face.size();
     c.verts = m_.vert.size();
     c.fn = m_.fn;
@@ -43,7 +51,8 @@ class EditJournal {
     return c;
   }
 
-  /// Saves face f (vertex refs, FF, VF, flags, normal) before it is changed.
+  /// Saves face f (vertex refs, FF, VF, flags, normal; wedge texture coordinates, colour and
+  /// quality if the mesh has them) before it is changed.
   void SaveFace(FaceType* f) {
     FaceRecord r;
     r.idx = Idx(f);
@@ -57,9 +66,11 @@ class EditJournal {
     r.flags = f->Flags();
     r.n = f->N();
     faceLog_.push_back(r);
+    SaveFaceAttributes(r.idx, *f);
   }
 
-  /// Saves vertex v (position, VF, flags) before it is changed.
+  /// Saves vertex v (position, VF, flags; colour, quality and texture coordinate if the mesh
+  /// has them) before it is changed.
   void SaveVertex(VertexType* v) {
     VertexRecord r;
     r.idx = vcg::tri::Index(m_, v);
@@ -68,14 +79,19 @@ class EditJournal {
     r.vfi = v->cVFi();
     r.flags = v->Flags();
     vertLog_.push_back(r);
+    SaveVertexAttributes(r.idx, *v);
   }
 
   /// Restores the mesh to checkpoint c and forgets everything logged after it.
   void RollbackTo(const Checkpoint& c) {
     for (size_t k = faceLog_.size(); k-- > c.faceLog;) Restore(faceLog_[k]);
     for (size_t k = vertLog_.size(); k-- > c.vertLog;) Restore(vertLog_[k]);
+    for (size_t k = faceAttrLog_.size(); k-- > c.faceAttrLog;) Restore(faceAttrLog_[k]);
+    for (size_t k = vertAttrLog_.size(); k-- > c.vertAttrLog;) Restore(vertAttrLog_[k]);
     faceLog_.resize(c.faceLog);
     vertLog_.resize(c.vertLog);
+    faceAttrLog_.resize(c.faceAttrLog);
+    vertAttrLog_.resize(c.vertAttrLog);
     // Truncating never reallocates, so every pointer into the kept part stays valid.
     if (m_.face.size() > c.faces) m_.face.resize(c.faces);
     if (m_.vert.size() > c.verts) m_.vert.resize(c.verts);
@@ -87,6 +103,8 @@ class EditJournal {
   void Commit() {
     faceLog_.clear();
     vertLog_.clear();
+    faceAttrLog_.clear();
+    vertAttrLog_.clear();
   }
 
   size_t LoggedFaces() const { return faceLog_.size(); }
@@ -107,6 +125,58 @@ class EditJournal {
     int vfi;
     int flags;
   };
+
+  struct FaceAttrRecord {
+    size_t idx;
+    typename FaceType::TexCoordType wt[3];
+    typename FaceType::ColorType c;
+    typename FaceType::QualityType q;
+  };
+  struct VertexAttrRecord {
+    size_t idx;
+    typename VertexType::ColorType c;
+    typename VertexType::QualityType q;
+    typename VertexType::TexCoordType t;
+  };
+  bool WedgeTex() const { return vcg::tri::HasPerWedgeTexCoord(m_); }
+  bool FaceColor() const { return vcg::tri::HasPerFaceColor(m_); }
+  bool FaceQuality() const { return vcg::tri::HasPerFaceQuality(m_); }
+  bool VertColor() const { return vcg::tri::HasPerVertexColor(m_); }
+  bool VertQuality() const { return vcg::tri::HasPerVertexQuality(m_); }
+  bool VertTex() const { return vcg::tri::HasPerVertexTexCoord(m_); }
+
+  void SaveFaceAttributes(size_t idx, FaceType& f) {
+    if (!WedgeTex() && !FaceColor() && !FaceQuality()) return;
+    FaceAttrRecord r{};
+    r.idx = idx;
+    if (WedgeTex())
+      for (int z = 0; z < 3; ++z) r.wt[z] = f.WT(z);
+    if (FaceColor()) r.c = f.C();
+    if (FaceQuality()) r.q = f.Q();
+    faceAttrLog_.push_back(r);
+  }
+  void SaveVertexAttributes(size_t idx, VertexType& v) {
+    if (!VertColor() && !VertQuality() && !VertTex()) return;
+    VertexAttrRecord r{};
+    r.idx = idx;
+    if (VertColor()) r.c = v.C();
+    if (VertQuality()) r.q = v.Q();
+    if (VertTex()) r.t = v.T();
+    vertAttrLog_.push_back(r);
+  }
+  void Restore(const FaceAttrRecord& r) {
+    FaceType& f = m_.face[r.idx];
+    if (WedgeTex())
+      for (int z = 0; z < 3; ++z) f.WT(z) = r.wt[z];
+    if (FaceColor()) f.C() = r.c;
+    if (FaceQuality()) f.Q() = r.q;
+  }
+  void Restore(const VertexAttrRecord& r) {
+    VertexType& v = m_.vert[r.idx];
+    if (VertColor()) v.C() = r.c;
+    if (VertQuality()) v.Q() = r.q;
+    if (VertTex()) v.T() = r.t;
+  }
 
   size_t Idx(const FaceType* f) const { return vcg::tri::Index(m_, f); }
   FaceType* F(long i) { return i < 0 ? nullptr : &m_.face[size_t(i)]; }
@@ -135,6 +205,8 @@ class EditJournal {
   MeshType& m_;
   std::vector<FaceRecord> faceLog_;
   std::vector<VertexRecord> vertLog_;
+  std::vector<FaceAttrRecord> faceAttrLog_;
+  std::vector<VertexAttrRecord> vertAttrLog_;
 };
 
 }  // namespace irregular
