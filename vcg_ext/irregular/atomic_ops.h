@@ -428,13 +428,15 @@ class AtomicOperations {
     std::vector<AtomicPrediction> all = VertexMoveConfigurations(p, ref);
     // the place: the neighbour (else the new-vertex wedge) in the sector nearest its centre
     const double centre = 60.0 * sector;
+    // (ties, within 1e-3 degrees, go to the smaller angle: the first counter-clockwise)
     int bestSite = -2, bestWedge = -2;
-    double best = 1e9;
+    double best = 1e9, bestAngle = 1e9;
     for (int pass = 0; pass < 2 && bestSite == -2; ++pass)
       for (const AtomicPrediction& c : all) {
         if ((pass == 0) != (c.site >= 0) || c.sector != sector) continue;
         const double g = AngleGap(c.angle, centre);
-        if (g < best) best = g, bestSite = c.site, bestWedge = c.wedge;
+        if (g < best - 1e-3 || (g <= best + 1e-3 && c.angle < bestAngle))
+          best = g, bestAngle = c.angle, bestSite = c.site, bestWedge = c.wedge;
       }
     if (bestSite == -2)
       return Refuse(out, Str("no edge of vertex ", p, " points into direction ", sector,
@@ -565,10 +567,11 @@ class AtomicOperations {
     if (!f.valid) return -1;
     int best = -1;
     double gap = 1e9;
+    double bestAngle = 1e9;
     for (VertexType* v : ed_.Star(p).neighbors) {
-      const double a = f.AngleOf(v->P());
+      const double a = f.AngleOf(v->P()), g = AngleGap(a, 60.0 * sector);
       if (SectorOfAngle(a) != sector) continue;
-      if (AngleGap(a, 60.0 * sector) < gap) gap = AngleGap(a, 60.0 * sector), best = ed_.Index(v);
+      if (g < gap - 1e-3 || (g <= gap + 1e-3 && a < bestAngle)) gap = g, bestAngle = a, best = ed_.Index(v);
     }
     return best;
   }
@@ -729,8 +732,10 @@ class AtomicOperations {
   }
 
   // Fig. 6 by angle (PairDirectionByAngle): the original dir of the k-th move by angle.
-  static const int kPairByAngle0 = 2, kPairByAngle1 = 1, kPairByAngle2 = 0, kPairByAngle3 = 5, kPairByAngle4 = 4,
-                   kPairByAngle5 = 3;
+  // Measured on a flat lattice (test PairMoveNumberingFollowsTheAngle): the original numbering
+  // already turns counter-clockwise from the v5-to-v7 edge, so the table is the identity.
+  static const int kPairByAngle0 = 0, kPairByAngle1 = 1, kPairByAngle2 = 2, kPairByAngle3 = 3, kPairByAngle4 = 4,
+                   kPairByAngle5 = 5;
 
   /// Index the k-th vertex a split creates from now would get (vcg appends vertices).
   int NextCreated(int k) { return int(ed_.Mesh().vert.size()) + k; }
