@@ -2,19 +2,30 @@
 // built from the graph operations of graph_ops.h.
 //
 // Direction convention (used everywhere in the plugin):
-//   * 5-7 pair movement: directions 0..5 turn counter-clockwise around the v5, starting at
-//     the v7. Let n0 = v7, n1 .. n4 be the v5's neighbours counter-clockwise, and m0 = v5,
-//     m1 .. m6 the v7's neighbours counter-clockwise (so n1 = m6 and n4 = m1):
+//   * 5-7 pair movement (fig. 6): directions 0..5 turn counter-clockwise around the v5,
+//     starting at the v7. Let n0 = v7, n1 .. n4 be the v5's neighbours counter-clockwise, and
+//     m0 = v5, m1 .. m6 the v7's neighbours counter-clockwise (so n1 = m6 and n4 = m1):
 //       0  split the v7 along (v7, m4): v7 -> v5 (keeps m5, m6), m4 -> v7      (toward n1 side)
 //       1  flip edge (v7, n1):          n1 -> v5, the vertex beyond -> v7
 //       2  collapse n1 into the v5:     the v5 becomes the v7, n2 -> v5
 //       3  collapse n4 into the v5:     the v5 becomes the v7, n3 -> v5
 //       4  flip edge (v7, n4):          n4 -> v5, the vertex beyond -> v7
 //       5  split the v7 along (v7, m3): v7 -> v5 (keeps m1, m2), m3 -> v7      (toward n4 side)
-//     On a regular neighbourhood each moves the pair one step and keeps it adjacent.
-//   * Single-vertex operations (move with 5-7 generation, 5-5-7-7 generation) take a
-//     neighbour index k counted counter-clockwise from a reference neighbour n0 (by default
-//     the neighbour with the smallest vertex index, so scripts are deterministic).
+//     On a regular neighbourhood each moves the pair one step and keeps it adjacent, and the
+//     numbering is also the order of the pair's displacement by angle: direction k moves the
+//     pair's midpoint into the k-th 60-degree sector counter-clockwise from the v5-to-v7 edge
+//     (measured, PairDirectionByAngle).
+//   * Single-vertex operations by direction (fig. 7 MoveVertexWithPairGeneration, fig. 8
+//     GenerateQuadrupleInSector): direction k = the k-th 60-degree sector counter-clockwise
+//     from a reference edge (p, ref), measured in p's tangent plane (directions.h); with no
+//     reference, from the world +X axis projected into the tangent plane.
+//   * The original single-vertex forms (MoveWithPairGeneration, GenerateQuadruple) take a
+//     neighbour index k counted counter-clockwise from a reference neighbour (by default the
+//     neighbour with the smallest vertex index); composite_ops.h uses them.
+//
+// Every operation has a dry run (Predict..., returning AtomicPrediction) that names the graph
+// operations and the roles of the result (moved vertex, pair5/pair7, created, deleted) without
+// editing the mesh; the operation itself applies exactly that prediction (Apply).
 //
 // Every operation states the valence change of each vertex it touches (AtomicOutcome::changes)
 // and checks it after the edit; it refuses (and rolls back) if the neighbourhood is not the
@@ -207,6 +218,26 @@ class AtomicOperations {
   static int PairDirectionByAngle(int k) {
     static const int table[6] = {kPairByAngle0, kPairByAngle1, kPairByAngle2, kPairByAngle3, kPairByAngle4, kPairByAngle5};
     return k >= 0 && k < 6 ? table[k] : -1;
+  }
+
+  /// "Toward this point" for a pair: the direction (original numbering) among the six whose
+  /// predicted move takes the pair's midpoint most nearly toward `point` (largest cosine
+  /// between the midpoint's displacement and the direction to the point); -1 if none passes.
+  int PairDirectionToward(int v5, int v7, const typename MeshType::CoordType& point) {
+    typedef typename MeshType::CoordType CoordType;
+    auto P = [&](int v) { return ed_.V(v)->P(); };
+    const CoordType mid = (P(v5) + P(v7)) / 2, want = point - mid;
+    int best = -1;
+    double bestCos = -2;
+    for (int dir = 0; dir < 6; ++dir) {
+      AtomicPrediction pr = PredictMovePair57(v5, v7, dir);
+      if (!pr) continue;
+      const CoordType d = (P(pr.pair5) + P(pr.pair7)) / 2 - mid;
+      const double len = double(d.Norm()) * double(want.Norm());
+      const double c = len > 0 ? double(d.dot(want)) / len : -1;
+      if (c > bestCos + 1e-9) bestCos = c, best = dir;
+    }
+    return best;
   }
 
   // ------------------------------------------------------------ 2. move with 5-7 generation (fig. 7)
