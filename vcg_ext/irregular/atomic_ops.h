@@ -619,12 +619,7 @@ class AtomicOperations {
       AtomicOutcome out;
       return Refuse(out, "a triple cancellation needs exactly three vertices");
     }
-    AtomicPrediction p = PredictRemoval(triple);
-    if (!p) {
-      AtomicOutcome out;
-      return Refuse(out, p.result.reason);
-    }
-    return ApplyFirst(RemovalCandidates(triple));
+    return ApplyRemoval(triple);
   }
 
   // ------------------------------------------------------------ 5. quadruple removal
@@ -638,12 +633,7 @@ class AtomicOperations {
       AtomicOutcome out;
       return Refuse(out, "a quadruple removal needs exactly four vertices");
     }
-    AtomicPrediction p = PredictRemoval(quad);
-    if (!p) {
-      AtomicOutcome out;
-      return Refuse(out, p.result.reason);
-    }
-    return ApplyFirst(RemovalCandidates(quad));
+    return ApplyRemoval(quad);
   }
 
   /// Dry run of MoveWithPairRemoval (3 vertices) or RemoveQuadruple (4 vertices): the first
@@ -653,7 +643,8 @@ class AtomicOperations {
     AtomicPrediction out;
     Result pre = CheckRemovalGroup(group);
     if (!pre) return Refuse(out, pre.reason);
-    std::vector<AtomicPrediction> c = RemovalCandidates(group);
+    std::vector<AtomicPrediction> c;
+    for (int phase = 0; phase < RemovalPhases(group) && c.empty(); ++phase) c = RemovalCandidates(group, phase);
     if (c.empty()) {
       if (group.size() == 3)
         return Refuse(out, "no single flip, collapse or split cancels these vertices: bring them closer first (5-5-7 or "
@@ -664,34 +655,36 @@ class AtomicOperations {
     return c.front();
   }
 
-  /// Every graph operation (or, for a quadruple, pair of operations) that cancels the group,
-  /// in the order the real operation tries them; each passes the topological checks.
-  std::vector<AtomicPrediction> RemovalCandidates(const std::vector<int>& group) {
+  /// The graph operations (or, for a quadruple, pairs of operations) that cancel the group,
+  /// in the order the real operation tries them, each passing the topological checks, by
+  /// phase: 0 single flips and collapses, 1 single vertex splits, 2 (quadruples) the collapse
+  /// and split through a v8. Later phases are searched only when the earlier ones give nothing
+  /// that applies, so a removal costs no more than before when a flip or collapse does it.
+  std::vector<AtomicPrediction> RemovalCandidates(const std::vector<int>& group, int phase) {
     std::vector<AtomicPrediction> out;
     if (!CheckRemovalGroup(group)) return out;
+    if (phase == 2) return group.size() == 4 ? CollapseSplitRemovals(group, "5-5-7-7 quadruple removed") : out;
+    const bool splits = phase == 1;
+    std::vector<AtomicPrediction> c;
     if (group.size() == 3) {
       int n5 = 0;
       for (int v : group) n5 += ed_.Valence(v) == 5;
       const int survivor = n5 == 2 ? 5 : 7;
-      const std::string what = Str(n5 == 2 ? "5-5-7" : "5-7-7", " triple cancelled into one v", survivor);
-      for (bool splits : {false, true}) {
-        std::vector<AtomicPrediction> c = Candidates(group, CancellationTest(group, 2, survivor), what, splits);
-        for (AtomicPrediction& p : c) {
-          p.moved = p.irregular.empty() ? -1 : p.irregular[0];
-          if (!splits || p.steps[0].kind == GraphStep::kSplit) out.push_back(p);
-        }
-      }
+      c = Candidates(group, CancellationTest(group, 2, survivor),
+                     Str(n5 == 2 ? "5-5-7" : "5-7-7", " triple cancelled into one v", survivor), splits);
     } else {
-      const std::string what = "5-5-7-7 quadruple removed";
-      for (bool splits : {false, true}) {
-        std::vector<AtomicPrediction> c = Candidates(group, CancellationTest(group, 4, 0), what, splits);
-        for (AtomicPrediction& p : c)
-          if (!splits || p.steps[0].kind == GraphStep::kSplit) out.push_back(p);
-      }
-      for (AtomicPrediction& p : CollapseSplitRemovals(group, what)) out.push_back(p);
+      c = Candidates(group, CancellationTest(group, 4, 0), "5-5-7-7 quadruple removed", splits);
+    }
+    for (AtomicPrediction& p : c) {
+      if (splits && p.steps[0].kind != GraphStep::kSplit) continue;
+      if (group.size() == 3) p.moved = p.irregular.empty() ? -1 : p.irregular[0];
+      out.push_back(p);
     }
     return out;
   }
+
+  /// Number of RemovalCandidates phases for a group of this size.
+  static int RemovalPhases(const std::vector<int>& group) { return group.size() == 4 ? 3 : 2; }
 
   /// Runs the prediction on the mesh and rolls it back: the verdict of the real operation,
   /// fold check included (geometryChecked = true). Leaves the mesh exactly as it was.
@@ -899,6 +892,19 @@ class AtomicOperations {
       }
       return irregularBefore - irregularAfter == cancelled && survivors == (survivor ? 1 : 0);
     };
+  }
+
+  /// The real removal: the candidates of each phase in order, the first that applies.
+  AtomicOutcome ApplyRemoval(const std::vector<int>& group) {
+    AtomicPrediction p = PredictRemoval(group);
+    AtomicOutcome out;
+    if (!p) return Refuse(out, p.result.reason);
+    for (int phase = 0; phase < RemovalPhases(group); ++phase) {
+      AtomicOutcome o = ApplyFirst(RemovalCandidates(group, phase));
+      if (o) return o;
+      if (phase == 0 || out.result.reason.empty() || out.result.reason == "not applied") out = o;
+    }
+    return out;
   }
 
   AtomicOutcome ApplyFirst(const std::vector<AtomicPrediction>& cands) {
