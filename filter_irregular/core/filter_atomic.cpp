@@ -13,6 +13,38 @@ namespace irr = vcg_ext::irregular;
 
 namespace filter_irregular {
 
+namespace {
+
+/// The vertex a single-vertex operation acts on, and the reference neighbour that names
+/// direction 0: one selected vertex (reference: none, i.e. the projected +X axis), or two
+/// adjacent ones, the vertex being the one of the valence the operation needs (5 or 7 for a
+/// move, 6 for a generation) and the other the reference; if both have it, the lower index is
+/// the vertex. Returns why the selection does not fit, or "".
+std::string VertexAndReference(irr::MeshEditor<CMeshO>& ed, const std::vector<int>& sel, const char* what, bool move,
+                               int& p, int& ref) {
+  if (sel.size() == 1) {
+    p = sel[0];
+    ref = -1;
+    return "";
+  }
+  if (sel.size() != 2)
+    return Format("%s needs one selected vertex, or that vertex and one of its neighbours (the reference edge of "
+                  "direction 0); %zu are selected.", what, sel.size());
+  const int a = std::min(sel[0], sel[1]), b = std::max(sel[0], sel[1]);
+  if (!ed.Adjacent(a, b))
+    return Format("%s with two selected vertices needs them adjacent: the second one names the reference edge; "
+                  "vertices %d and %d are not adjacent.", what, a, b);
+  auto fits = [&](int v) {
+    const int d = ed.Valence(v);
+    return move ? (d == 5 || d == 7) : d == 6;
+  };
+  p = fits(a) || !fits(b) ? a : b;
+  ref = p == a ? b : a;
+  return "";
+}
+
+}  // namespace
+
 FilterOutcome ApplyAtomic(FilterContext& ctx, const ParamValues& par) {
   CMeshO& m = ctx.Mesh();
   const std::string defect = InputDefect(m);
@@ -20,6 +52,9 @@ FilterOutcome ApplyAtomic(FilterContext& ctx, const ParamValues& par) {
   const int op = par.Enum("operation");
   const int dir = par.Int("direction");
   const bool relax = par.Bool("relax");
+  const bool toward = par.Bool("towardPoint");
+  const vcg::Point3d tp = par.Point("point");
+  const CMeshO::CoordType target(tp[0], tp[1], tp[2]);
   std::vector<int> sel = SelectedVertices(m);
   const irr::TopologySummary before = SummaryOf(m);
   std::unique_ptr<irr::SurfaceProjector> projector;
@@ -41,7 +76,7 @@ FilterOutcome ApplyAtomic(FilterContext& ctx, const ParamValues& par) {
   };
   // A graph operation (flip, collapse, split) states no valence changes of its own: they all
   // lie in the selection's 1-ring (plus a split's new vertex), measured before and after.
-  const bool graphOp = op >= 6;
+  const bool graphOp = op >= 6 && op <= 8;
   std::vector<std::pair<int, int>> ringBefore;
   if (graphOp)
     for (int v : irr::KRing(m, sel, 1)) ringBefore.emplace_back(v, ed.Valence(v));
@@ -54,13 +89,25 @@ FilterOutcome ApplyAtomic(FilterContext& ctx, const ParamValues& par) {
       if (!need(2, "A 5-7 pair move")) return FilterOutcome::Refuse(wrongCount);
       int a = sel[0], b = sel[1];
       if (ed.Valence(a) == 7) std::swap(a, b);
-      out = ops.MovePair57(a, b, dir);
+      int d = dir;
+      if (toward) {
+        d = ed.IsLive(a) && ed.IsLive(b) && ed.Valence(a) == 5 && ed.Valence(b) == 7 && ed.Adjacent(a, b)
+                ? ops.PairDirectionToward(a, b, target)
+                : 0;  // not a pair: MovePair57 says why
+        if (d < 0) return FilterOutcome::Refuse("No move of this 5-7 pair is possible (every direction is blocked).");
+      }
+      out = ops.MovePair57(a, b, d);
       break;
     }
-    case 1:
-      if (!need(1, "A move with 5-7 pair generation")) return FilterOutcome::Refuse(wrongCount);
-      out = ops.MoveWithPairGeneration(sel[0], dir);
+    case 1: {
+      int p = -1, ref = -1;
+      std::string why = VertexAndReference(ed, sel, "A move with 5-7 pair generation", true, p, ref);
+      if (!why.empty()) return FilterOutcome::Refuse(why);
+      const int sector = toward ? ops.SectorToward(p, target, ref) : dir;
+      out = ops.MoveVertexWithPairGeneration(p, sector, ref, irr::AtomicVia(par.Enum("via")),
+                                             irr::PairSide(par.Enum("pairSide")));
       break;
+    }
     case 2:
       if (sel.size() == 2 && valences(sel) == std::vector<int>{5, 7})
         return FilterOutcome::Refuse(irr::ImpossibleRequest::CancelPair57());
@@ -69,9 +116,15 @@ FilterOutcome ApplyAtomic(FilterContext& ctx, const ParamValues& par) {
       break;
     case 3:
     case 4:
-      if (!need(1, "A 5-5-7-7 generation")) return FilterOutcome::Refuse(wrongCount);
-      out = ops.GenerateQuadruple(sel[0], dir, op == 4);
+    case 9: {
+      int p = -1, ref = -1;
+      std::string why = VertexAndReference(ed, sel, "A 5-5-7-7 generation", false, p, ref);
+      if (!why.empty()) return FilterOutcome::Refuse(why);
+      const int sector = toward ? ops.SectorToward(p, target, ref) : dir;
+      typedef irr::AtomicOperations<CMeshO>::QuadrupleVia QV;
+      out = ops.GenerateQuadrupleInSector(p, sector, op == 3 ? QV::Flip : op == 4 ? QV::Split : QV::CollapseSplit, ref);
       break;
+    }
     case 5:
       if (sel.size() == 2 && valences(sel) == std::vector<int>{5, 7})
         return FilterOutcome::Refuse(irr::ImpossibleRequest::CancelPair57());
@@ -140,6 +193,9 @@ FilterOutcome ApplyAtomic(FilterContext& ctx, const ParamValues& par) {
   for (auto& kv : out.changes) changes += Format(" %d:%d", kv.first, kv.second);
   FinishEdit(m);
   ctx.Logf("Atomic operation: %s", out.description.c_str());
+  if (out.moved >= 0 || out.pair5 >= 0)
+    ctx.Logf("Moved vertex %d, 5-7 pair (v5 %d, v7 %d), by vertex index before compaction", out.moved, out.pair5,
+             out.pair7);
   if (!changes.empty()) ctx.Logf("Valence after, by vertex index before compaction:%s", changes.c_str());
   const bool colorize = par.Bool("colorize");
   const irr::TopologySummary after = PaintAndLog(ctx, colorize, 0, 0, colorize);

@@ -126,15 +126,26 @@ std::vector<FilterSpec> MakeCatalog() {
   f.info =
       "Applies one atomic operation of Li et al. (sec. 6.1-6.2) to the selected vertices (select them with the "
       "Analyze filter, by hand, or with 'Conditional Vertex Selection'):<br>"
-      "<b>5-7 pair move</b>: select an adjacent v5 and v7; direction 0..5 turns counter-clockwise around the v5 "
-      "starting at the v7 (1, 4: edge flips; 2, 3: collapses; 0, 5: splits).<br>"
-      "<b>v5/v7 move with 5-7 pair generation</b>: select one v5 or v7; it moves toward its neighbour number "
-      "'direction' (counted counter-clockwise from its neighbour of smallest index) and leaves an adjacent 5-7 "
-      "pair.<br>"
+      "<b>5-7 pair move</b> (fig. 6): select an adjacent v5 and v7; direction 0..5 is the k-th of the six moves "
+      "counted counter-clockwise (seen from outside) from the v5-to-v7 edge, by the direction in which the pair "
+      "moves: 0 along that edge (vertex split), 1 (edge flip), 2 (collapse), 3 (collapse), 4 (flip), 5 (split).<br>"
+      "<b>v5/v7 move with 5-7 pair generation</b> (fig. 7): select one v5 or v7, and optionally one of its "
+      "neighbours as the reference edge. Direction k moves the vertex into the k-th 60-degree sector counted "
+      "counter-clockwise from the reference edge, measured in the vertex's tangent plane (sector k is centred "
+      "on 60k degrees); with no neighbour selected, direction 0 is the model's +X axis projected into the tangent "
+      "plane (+Y if the plane faces X). The vertex moves to the neighbour in that sector (a v5, which has five "
+      "edges, moves into a new vertex made by a vertex split when its sector holds none) and leaves an adjacent "
+      "5-7 pair. 'Graph operation' and 'Side of the new pair' choose among the configurations: a v5 by flip, "
+      "collapse or split, a v7 by flip or split (no collapse moves a v7), each with the new pair on either side.<br>"
       "<b>v5/v7 move with 5-7 pair removal</b>: select an adjacent 5-5-7 or 5-7-7 triple; it becomes one v5 or v7 "
-      "(triple cancellation).<br>"
-      "<b>5-5-7-7 generation</b> (by flip or by split): select one regular vertex.<br>"
-      "<b>5-5-7-7 removal</b>: select the four vertices of a quadruple in two triangles.<br>"
+      "(triple cancellation; flips, collapses, then splits are tried).<br>"
+      "<b>5-5-7-7 generation</b> (fig. 8) by flip, by split, or by collapse and split (the paper's two-operation "
+      "configuration through a v8): select one regular vertex, and optionally a neighbour as reference edge; "
+      "direction k: the edge the operation is built on (flipped, split or collapsed) lies in the k-th 60-degree "
+      "sector from the reference.<br>"
+      "<b>5-5-7-7 removal</b>: select the four vertices of a quadruple (fig. 8, any of the three variants).<br>"
+      "<b>Toward point</b>: instead of 'direction', the move (pair) or sector (single vertex) that best points at "
+      "'point'.<br>"
       "<b>Edge flip / collapse</b>: select the two ends of the edge (collapse keeps the lower index). <b>Vertex "
       "split</b>: select a vertex and two of its neighbours.<br>"
       "Impossible requests are refused with the reason (one irregular vertex cannot move alone, Theorem 5.1; a 5-7 "
@@ -144,11 +155,23 @@ std::vector<FilterSpec> MakeCatalog() {
       Enum("operation", 0,
            {"5-7 pair move", "v5/v7 move with 5-7 pair generation",
             "v5/v7 move with 5-7 pair removal (triple cancellation)", "5-5-7-7 generation by flip",
-            "5-5-7-7 generation by split", "5-5-7-7 removal", "Edge flip", "Edge collapse", "Vertex split"},
+            "5-5-7-7 generation by split", "5-5-7-7 removal", "Edge flip", "Edge collapse", "Vertex split",
+            "5-5-7-7 generation by collapse and split"},
            "Operation", "Which atomic operation to apply to the selected vertices."),
       Int("direction", 0, 0, kMaxDirection, "Direction",
-          "5-7 pair move: 0..5 counter-clockwise around the v5 from the v7. Single-vertex operations: index of the "
-          "neighbour to move toward, counter-clockwise from the neighbour with the smallest vertex index."),
+          "0..5. 5-7 pair move: the k-th move counter-clockwise from the v5-to-v7 edge. Single-vertex operations: "
+          "the k-th 60-degree sector counter-clockwise from the reference edge (the selected neighbour; none: the "
+          "projected +X axis)."),
+      Enum("via", 0, {"Any", "Edge flip", "Edge collapse", "Vertex split"}, "Graph operation",
+           "v5/v7 move with 5-7 pair generation: which graph operation makes the move (Any: the first that works, "
+           "in the order flip, collapse, split)."),
+      Enum("pairSide", 0, {"Any", "Counter-clockwise", "Clockwise"}, "Side of the new pair",
+           "v5/v7 move with 5-7 pair generation: on which side of the move, seen from where the vertex was, the "
+           "generated 5-7 pair lies (Any: counter-clockwise first)."),
+      Bool("towardPoint", false, "Toward point",
+           "Pair move, v5/v7 move and 5-5-7-7 generation: ignore 'direction' and go toward 'point'."),
+      Point3("point", "Point",
+             "Where to go: in the dialog, use Get / Surf. Pos. and double-click the mesh."),
       Bool("relax", true, "Relax after editing",
            "Local relaxation of the 2-ring around the changed vertices, projected onto the surface as it was before "
            "the filter (paper sec. 8)."),

@@ -114,33 +114,73 @@ def test_pair_move_with_relaxation_moves_only_the_two_ring_onto_the_surface():
     fo.check_invariants(t1)
 
 
-def generation_prediction(t0, p, k):
-    """The paper's move with 5-7 pair generation (fig. 7) of the v5 or v7 p toward its
-    neighbour k (counted counter-clockwise from its neighbour of smallest index): valences
-    after, by input vertex."""
-    n = lambda j: fo.neighbour_from(t0, p, j)  # noqa: E731
-    if fo.valences(t0)[p] == 5:  # flip the link edge (n_k, n_k+1): n_k is the moved v5, (n_k+1, z) the pair
-        z = [o for o in fo.opposite_vertices(t0, n(k), n(k + 1)) if o != p][0]
-        return {p: 6, n(k): 5, n(k + 1): 5, z: 7}
-    return {p: 6, n(k): 5, n(k - 1): 7, n(k + 1): 7}  # flip (p, n_k): n_k+1 is the moved v7
+def tangent_angles(t0, p, ref=None):
+    """The plugin's directions (directions.h): the angle in degrees, counter-clockwise in p's
+    tangent plane (normal: area-weighted face normals), of each neighbour of p (one_ring
+    order), measured from the edge to ref or, with ref None, from the world +X axis projected
+    into the plane (+Y when the plane faces X)."""
+    f, v = t0.faces, t0.vertices.astype(np.float64)
+    rows = f[(f == p).any(axis=1)]
+    n = np.cross(v[rows[:, 1]] - v[rows[:, 0]], v[rows[:, 2]] - v[rows[:, 0]]).sum(axis=0)
+    n /= np.linalg.norm(n)
+    axis = (v[ref] - v[p]) if ref is not None else (np.array([0.0, 1, 0]) if abs(n[0]) > 0.9 else np.array([1.0, 0, 0]))
+    x = axis - n * axis.dot(n)
+    x /= np.linalg.norm(x)
+    y = np.cross(n, x)
+    ring = fo.one_ring(t0, p)
+    d = v[ring] - v[p]
+    return ring, np.degrees(np.arctan2(d @ y, d @ x)) % 360.0
+
+
+def sector_neighbour(t0, p, k, ref=None):
+    """The neighbour of p in the 60-degree sector k (centred on 60k degrees) nearest the
+    sector's centre, ties to the smaller angle; (index in one_ring order, ring), or (None, ring)."""
+    ring, ang = tangent_angles(t0, p, ref)
+    best = None
+    for i, a in enumerate(ang):
+        if int(((a + 30.0) % 360.0) // 60.0) % 6 != k:
+            continue
+        gap = min(abs(a - 60.0 * k) % 360.0, 360.0 - abs(a - 60.0 * k) % 360.0)
+        if best is None or gap < best[0] - 1e-3 or (gap <= best[0] + 1e-3 and a < best[1]):
+            best = (gap, a, i)
+    return (None if best is None else best[2]), ring
+
+
+def generation_prediction(t0, p, k, ref=None):
+    """The paper's move with 5-7 pair generation (fig. 7) of the v5 or v7 p into sector k by an
+    edge flip with the new pair counter-clockwise: valences after, by input vertex, or None
+    when no neighbour lies in the sector (a v5's sixth direction goes into a new vertex)."""
+    i, ring = sector_neighbour(t0, p, k, ref)
+    if i is None:
+        return None
+    n = lambda j: ring[(i + j) % len(ring)]  # noqa: E731
+    if fo.valences(t0)[p] == 5:  # flip the link edge (n_j, n_j+1): n_j is the moved v5, (n_j+1, z) the pair
+        z = [o for o in fo.opposite_vertices(t0, n(0), n(1)) if o != p][0]
+        return {p: 6, n(0): 5, n(1): 5, z: 7}
+    return {p: 6, n(1): 5, n(0): 7, n(2): 7}  # flip (p, n_j+1): n_j is the moved v7, (n_j+1, n_j+2) the pair
 
 
 @pytest.mark.parametrize("p", list(PAIR))
 def test_move_with_pair_generation_then_removal(p):
-    """A v5 (v7) moves toward its neighbour k and leaves a 5-7 pair, for every k whose
-    vertices are regular; the triple cancellation of the three selected vertices (sec. 6.2)
-    puts the mesh back exactly as it was."""
+    """A v5 (v7) moves into each 60-degree sector (from the projected +X axis) whose
+    neighbour and flip vertices are regular and leaves a 5-7 pair on the counter-clockwise
+    side; the triple cancellation of the three selected vertices (sec. 6.2) puts the mesh
+    back exactly as it was."""
     probe = load("knot1.off")
     t0 = tri(probe)
     val = fo.valences(t0)
-    ks = [k for k in range(val[p]) if all(val[i] == 6 for i, d in generation_prediction(t0, p, k).items() if i != p)]
+    ks = []
+    for k in range(6):
+        e = generation_prediction(t0, p, k)
+        if e is not None and all(val[i] == 6 for i in e if i != p):
+            ks.append(k)
     assert len(ks) >= 2, ks
     for k in ks:
         ms = load("knot1.off")
         expect = generation_prediction(t0, p, k)
         select(ms, [p])
-        out = apply(ms, ATOMIC, operation="v5/v7 move with 5-7 pair generation", direction=k, relax=False,
-                    colorize=True)
+        out = apply(ms, ATOMIC, operation="v5/v7 move with 5-7 pair generation", direction=k, via="Edge flip",
+                    pairside="Counter-clockwise", relax=False, colorize=True)
         t1 = tri(ms)
         check_edit(t0, t1, expect)
         assert sorted(selected(ms).tolist()) == sorted(i for i, d in expect.items() if d != 6), k
@@ -154,14 +194,59 @@ def test_move_with_pair_generation_then_removal(p):
         assert fo.valences(t2)[selected(ms)].tolist() == [val[p]]
 
 
+@pytest.mark.parametrize("p", list(PAIR))
+def test_move_with_pair_generation_from_a_selected_reference_edge(p):
+    """With the vertex and one neighbour r selected, direction 0 moves toward r (the
+    reference edge), whatever the vertex indices: the flip puts the moved vertex on r."""
+    t0 = tri(load("knot1.off"))
+    val = fo.valences(t0)
+    for r in fo.one_ring(t0, p):
+        e = generation_prediction(t0, p, 0, ref=r)
+        if e is None or not all(val[i] == 6 for i in e if i != p):
+            continue
+        assert e[r] == val[p]  # the moved vertex is the one on the reference edge
+        ms = load("knot1.off")
+        select(ms, [p, r])
+        apply(ms, ATOMIC, operation="v5/v7 move with 5-7 pair generation", direction=0, via="Edge flip",
+              pairside="Counter-clockwise", relax=False)
+        check_edit(t0, tri(ms), e)
+        return
+    pytest.fail("no neighbour of %d allows the move" % p)
+
+
+def test_move_with_pair_generation_toward_a_point():
+    """'Toward point': the sector of the point's direction, the same as naming it."""
+    p = PAIR[0]
+    t0 = tri(load("knot1.off"))
+    val = fo.valences(t0)
+    ring, ang = tangent_angles(t0, p)
+    for i, r in enumerate(ring):
+        k = int(((ang[i] + 30.0) % 360.0) // 60.0) % 6
+        e = generation_prediction(t0, p, k)
+        if e is None or not all(val[j] == 6 for j in e if j != p):
+            continue
+        ms = load("knot1.off")
+        select(ms, [p])
+        target = t0.vertices[p] + 3.0 * (t0.vertices[r] - t0.vertices[p])
+        apply(ms, ATOMIC, operation="v5/v7 move with 5-7 pair generation", towardpoint=True,
+              point=target, direction=(k + 3) % 6, via="Edge flip", pairside="Counter-clockwise", relax=False)
+        check_edit(t0, tri(ms), e)
+        return
+    pytest.fail("no direction of %d allows the move" % p)
+
+
 @pytest.mark.parametrize("k", range(6))
 def test_quadruple_generation_by_flip_every_direction_and_removal(k):
     p = REGULAR[0]
     ms = load("knot1.off")
     t0 = tri(ms)
     select(ms, [p])
-    n = lambda j: fo.neighbour_from(t0, p, j)  # noqa: E731
-    expect = {p: 5, n(k): 5, n(k - 1): 7, n(k + 1): 7}
+    i, ring = sector_neighbour(t0, p, k)
+    if i is None:  # the mesh's angles leave this sector without an edge
+        refuse(ms, ATOMIC, "points into direction %d" % k, operation="5-5-7-7 generation by flip", direction=k)
+        return
+    n = lambda j: ring[(i + j) % 6]  # noqa: E731
+    expect = {p: 5, n(0): 5, n(-1): 7, n(1): 7}
     out = apply(ms, ATOMIC, operation="5-5-7-7 generation by flip", direction=k, relax=False, colorize=True)
     t1 = tri(ms)
     check_edit(t0, t1, expect)
@@ -191,24 +276,59 @@ def test_example_round_trip_on_the_bunny():
     fo.check_invariants(t2)
 
 
-@pytest.mark.parametrize("k", [0, 2])
+@pytest.mark.parametrize("k", range(6))
 def test_quadruple_generation_by_split_adds_one_vertex_where_predicted(k):
     p = REGULAR[1]
     ms = load("knot1.off")
     t0 = tri(ms)
     select(ms, [p])
-    n = lambda j: fo.neighbour_from(t0, p, j)  # noqa: E731
+    i, ring = sector_neighbour(t0, p, k)
+    if i is None:  # the mesh's angles leave this sector without an edge
+        refuse(ms, ATOMIC, "points into direction %d" % k, operation="5-5-7-7 generation by split", direction=k)
+        return
+    n = lambda j: ring[(i + j) % 6]  # noqa: E731
     out = apply(ms, ATOMIC, operation="5-5-7-7 generation by split", direction=k, relax=False, colorize=True)
     t1 = tri(ms)
     assert len(t1.vertices) == len(t0.vertices) + 1 and len(t1.faces) == len(t0.faces) + 2
-    where = check_edit(t0, t1, {p: 5, n(k): 7, n(k + 3): 7}, created=[5], moved=[p])
+    where = check_edit(t0, t1, {p: 5, n(0): 7, n(3): 7}, created=[5], moved=[p])
     # the split vertex and the new one sit on either side of where p was, within its 1-ring
     reach = np.linalg.norm(t0.vertices[fo.one_ring(t0, p)] - t0.vertices[p], axis=1).max()
     assert np.linalg.norm(t1.vertices[[p, -1]] - t0.vertices[p], axis=1).max() < reach
-    assert selected_inputs(ms, where) == sorted([-1, p, n(k), n(k + 3)])
+    assert selected_inputs(ms, where) == sorted([-1, p, n(0), n(3)])
     assert out["v5_after"] == out["v5_before"] + 2 and out["v7_after"] == out["v7_before"] + 2
     assert_counts(out, t1, "_after")
     # the removal collapses it again: the input's connectivity and positions
+    apply(ms, ATOMIC, operation="5-5-7-7 removal", relax=False)
+    t2 = tri(ms)
+    assert len(t2.vertices) == len(t0.vertices)
+    assert np.array_equal(np.sort(fo.valences(t2)), np.sort(fo.valences(t0)))
+    fo.check_invariants(t2)
+
+
+@pytest.mark.parametrize("k", range(6))
+def test_quadruple_generation_by_collapse_and_split_through_a_v8(k):
+    """Fig. 8's two-operation configuration: the neighbour n_k in sector k collapses into p
+    (a v8), which splits along its edges to n_k+3 and to q (opposite p across n_k), three
+    edges on each side: 5s at n_k-1 and n_k+1, 7s at n_k+3 and q; n_k deleted, one vertex
+    created (regular); the removal undoes it."""
+    p = REGULAR[1]
+    ms = load("knot1.off")
+    t0 = tri(ms)
+    select(ms, [p])
+    i, ring = sector_neighbour(t0, p, k)
+    if i is None:  # the mesh's angles leave this sector without an edge
+        refuse(ms, ATOMIC, "points into direction %d" % k, operation="5-5-7-7 generation by collapse and split",
+               direction=k)
+        return
+    n = lambda j: ring[(i + j) % 6]  # noqa: E731
+    rk = fo.one_ring(t0, n(0))
+    q = rk[(rk.index(p) + 3) % 6]
+    out = apply(ms, ATOMIC, operation="5-5-7-7 generation by collapse and split", direction=k, relax=False,
+                colorize=True)
+    t1 = tri(ms)
+    where = check_edit(t0, t1, {n(-1): 5, n(1): 5, n(3): 7, q: 7}, created=[6], deleted=[n(0)], moved=[p])
+    assert selected_inputs(ms, where) == sorted([n(-1), n(1), n(3), q])
+    assert out["v5_after"] == out["v5_before"] + 2 and out["v7_after"] == out["v7_before"] + 2
     apply(ms, ATOMIC, operation="5-5-7-7 removal", relax=False)
     t2 = tri(ms)
     assert len(t2.vertices) == len(t0.vertices)
@@ -310,10 +430,10 @@ def test_a_five_seven_pair_cannot_be_cancelled(operation):
 
 @pytest.mark.parametrize("operation,count,words", [
     (0, 3, "needs exactly 2 selected vertices (two); 3 are selected"),
-    (1, 2, "needs exactly 1 selected vertices (one); 2 are selected"),
+    (1, 3, "needs one selected vertex, or that vertex and one of its neighbours"),
     (2, 4, "needs exactly 3 selected vertices (three); 4 are selected"),
-    (3, 3, "needs exactly 1 selected vertices (one); 3 are selected"),
-    (4, 0, "needs exactly 1 selected vertices (one); 0 are selected"),
+    (3, 3, "needs one selected vertex, or that vertex and one of its neighbours"),
+    (4, 0, "needs one selected vertex, or that vertex and one of its neighbours"),
     (5, 3, "needs exactly 4 selected vertices (four); 3 are selected"),
     (6, 1, "needs exactly 2 selected vertices (two); 1 are selected"),
     (7, 3, "needs exactly 2 selected vertices (two); 3 are selected"),
