@@ -33,7 +33,8 @@ EDITING = [ATOMIC, REDUCE, AGGREGATE, MOVE_PAIR, CANCEL_TRIPLE, CANCEL_QUADRUPLE
 
 OPERATIONS = ["5-7 pair move", "v5/v7 move with 5-7 pair generation",
               "v5/v7 move with 5-7 pair removal (triple cancellation)", "5-5-7-7 generation by flip",
-              "5-5-7-7 generation by split", "5-5-7-7 removal", "Edge flip", "Edge collapse", "Vertex split"]
+              "5-5-7-7 generation by split", "5-5-7-7 removal", "Edge flip", "Edge collapse", "Vertex split",
+              "5-5-7-7 generation by collapse and split"]
 
 
 def corpus(name):

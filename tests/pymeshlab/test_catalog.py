@@ -16,7 +16,9 @@ from fi_pm import (AGGREGATE, ANALYZE, ATOMIC, AUTOMATIC, CANCEL_QUADRUPLE, CANC
 # pymeshlab name -> [(python parameter name, type as pymeshlab prints it, default as printed)]
 EXPECTED = {
     ANALYZE: [("select", "str", "'All irregular'"), ("valence", "int", "5"), ("colorize", "bool", "True")],
-    ATOMIC: [("operation", "str", "'5-7 pair move'"), ("direction", "int", "0"), ("relax", "bool", "True"),
+    ATOMIC: [("operation", "str", "'5-7 pair move'"), ("direction", "int", "0"), ("via", "str", "'Any'"),
+             ("pairside", "str", "'Any'"), ("towardpoint", "bool", "False"),
+             ("point", "numpy.ndarray[numpy.float64[3]]", "[0, 0, 0]"), ("relax", "bool", "True"),
              ("colorize", "bool", "True")],
     RELAX: [("mode", "str", "'Local'"), ("iterations", "int", "10"), ("region", "str", "'All'"),
             ("reproject", "bool", "True"), ("featureangle", "float", "60")],
@@ -45,6 +47,10 @@ EXERCISED = {
     (ATOMIC, "operation"): ["test_atomic::test_quadruple_generation_by_flip_every_direction_and_removal",
                             "test_atomic::test_vertex_split_keeps_the_counter_clockwise_side"],
     (ATOMIC, "direction"): ["test_atomic::test_pair_move_every_direction_lands_where_the_paper_says"],
+    (ATOMIC, "via"): ["test_atomic::test_move_with_pair_generation_then_removal"],
+    (ATOMIC, "pairside"): ["test_atomic::test_move_with_pair_generation_then_removal"],
+    (ATOMIC, "towardpoint"): ["test_atomic::test_move_with_pair_generation_toward_a_point"],
+    (ATOMIC, "point"): ["test_atomic::test_move_with_pair_generation_toward_a_point"],
     (ATOMIC, "relax"): ["test_atomic::test_pair_move_with_relaxation_moves_only_the_two_ring_onto_the_surface", SHARED],
     (ATOMIC, "colorize"): ["test_atomic::test_colorize_off_keeps_the_users_colours_and_quality", SHARED],
     (RELAX, "mode"): ["test_relax::test_reprojection_keeps_vertices_on_the_input_surface"],
