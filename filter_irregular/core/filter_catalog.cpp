@@ -99,17 +99,23 @@ std::vector<FilterSpec> MakeCatalog() {
   f.changesConnectivity = false;
   f.info =
       "Colours vertices by valence (v3- purple, v4 cyan, v5 blue, v6 grey, v7 orange, v8 red, v9+ dark red; "
-      "boundary vertices by valence + 2, so regular boundary vertices of valence 4 are grey), writes the valence "
+      "boundary vertices by valence + 6 - their regular valence, so regular boundary vertices are grey), writes "
+      "the valence "
       "into vertex quality, optionally selects irregular vertices, and logs the valence histogram, the irregular "
       "count, Euler characteristic, genus, boundary loops and whether the discrete Gauss-Bonnet identity "
       "sum(6 - valence) + sum_boundary(4 - valence) = 6 chi holds (Li et al., Editing Operations for Irregular "
-      "Vertices in Triangle Meshes, eq. 2). Returns the counts (pymeshlab: a dict). Refuses non-manifold or "
+      "Vertices in Triangle Meshes, eq. 2). A boundary vertex is regular at valence round(corner angle / 60) + 1, "
+      "the corner angle being the sum of its face angles: 4 on a smooth stretch (150 to 210 degrees), 3 at a "
+      "120 degree corner, 2 at 60 degrees, 5 at 240. Returns the counts (pymeshlab: a dict; boundary_irregular: "
+      "boundary vertices irregular by that rule, boundary_corners: boundary vertices whose regular valence is "
+      "not 4). Refuses non-manifold or "
       "polygonal meshes without changing them.";
   f.params = {
       Enum("select", 1, {"None", "All irregular", "Only valence"}, "Select vertices",
            "Replace the vertex selection: None keeps it as it is; All irregular selects every vertex of valence != 6 "
-           "(boundary: != 4); Only valence selects the vertices of the valence below (boundary vertices count as "
-           "valence + 2)."),
+           "(boundary: != the regular valence of its corner); Only valence selects the vertices of the valence below "
+           "(boundary vertices count as "
+           "valence + 6 - their regular valence, i.e. valence + 2 on a smooth stretch)."),
       Int("valence", 5, 0, 1000, "Valence to select",
           "Used with 'Only valence': select the vertices of this (interior-equivalent) valence."),
       Bool("colorize", true, "Colour by valence",
