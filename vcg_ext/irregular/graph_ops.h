@@ -34,6 +34,8 @@
 //     half that holds the boundary (the faces next to the two boundary edges) stays on the
 //     boundary at w's position; the other half becomes an interior vertex. Which half is
 //     which follows the same rule as inside: w keeps the edges from a to b counter-clockwise.
+//   SplitBoundary(w; a): the inverse of a boundary-edge collapse: w splits along one interior
+//     edge (w, a) into two boundary vertices joined by a new boundary edge (see there).
 // Every operation is journaled (journal.h): a refused operation, including one refused by the
 // geometric check after trying it, leaves the mesh exactly as it was.
 #pragma once
@@ -255,6 +257,38 @@ class MeshEditor {
       if (last) return last;
     }
     return Fail("splitting vertex ", w, " ", last.reason);
+  }
+
+  // ---------------------------------------------------------------- boundary vertex split
+  /// Can boundary vertex w be split along its interior edge to a, the inverse of collapsing a
+  /// boundary edge? w on the boundary, (w, a) an interior edge.
+  Result CanSplitBoundary(int w, int a) {
+    if (!IsLive(w) || !IsLive(a)) return Result::Fail("a vertex of the split does not exist");
+    VertexStar<MeshType> s = Star(w);
+    if (!s.boundary) return Fail("vertex ", w, " does not lie on the boundary");
+    const int i = s.IndexOf(V(a));
+    if (i < 0) return Fail("vertex ", a, " is not a neighbour of vertex ", w);
+    if (i == 0 || i == s.Valence() - 1)
+      return Fail("edge (", w, ", ", a, ") lies on the boundary: a boundary vertex is split along an interior edge");
+    return Result::Ok();
+  }
+
+  /// Splits boundary vertex w along its interior edge to a into two boundary vertices joined
+  /// by a new boundary edge, adding the face (w, a, x). With w's fan nb[0..n] (nb[0], nb[n]
+  /// its boundary neighbours) and a = nb[i]: w keeps nb[0..i], the new vertex x takes
+  /// nb[i..n]. Valences: w: i + 2, x: n - i + 2, a: +1 (sec. 6.1 rules on the surface closed
+  /// by a cone vertex: the inverse of Collapse across the new edge). w moves a share of the
+  /// way towards nb[0], x towards nb[n]: both stay on the boundary polyline.
+  /// *created receives x.
+  Result SplitBoundary(int w, int a, int* created = nullptr) {
+    Result ok = CanSplitBoundary(w, a);
+    if (!ok) return ok;
+    Result last;
+    for (ScalarType s : {ScalarType(1) / 3, ScalarType(1) / 6, ScalarType(0.05)}) {
+      last = SplitBoundaryWith(w, a, s, created);
+      if (last) return last;
+    }
+    return Fail("splitting boundary vertex ", w, " ", last.reason);
   }
 
   /// Recomputes the VF list of v from its fan, found through FF from any live corner of v.
@@ -572,6 +606,80 @@ class MeshEditor {
     x->VFp() = fa;  // a live corner to start from: fa = (w, x, a)
     x->VFi() = 1;
     for (VertexType* q : {w, x, a, b}) RelinkVF(q);
+    Result geo = CheckGeometry(changed, ref, refArea);
+    if (!geo) {
+      RollbackTo(cp);
+      return geo;
+    }
+    if (created) *created = xi;
+    return Result::Ok();
+  }
+
+  Result SplitBoundaryWith(int wi, int ai, ScalarType s, int* created) {
+    Checkpoint cp = Mark();
+    vcg::tri::Allocator<MeshType>::AddVertices(m_, 1);
+    vcg::tri::Allocator<MeshType>::AddFaces(m_, 1);
+    const int xi = int(m_.vert.size()) - 1;
+    FaceType* F = &m_.face.back();
+    VertexType* w = V(wi);
+    VertexType* x = V(xi);
+    VertexType* a = V(ai);
+    VertexStar<MeshType> st = Star(wi);
+    const int n = int(st.corners.size());
+    const int i = st.IndexOf(a);
+    CoordType ref(0, 0, 0);
+    ScalarType refArea = 0;
+    for (auto& c : st.corners) {
+      ref += (c.f->P(1) - c.f->P(0)) ^ (c.f->P(2) - c.f->P(0));
+      refArea += Area(c.f);
+    }
+    refArea /= ScalarType(n);
+    const CoordType p = w->P(), first = st.neighbors.front()->P(), lastP = st.neighbors.back()->P();
+    x->ImportData(*w);
+    x->ClearS();
+    x->VFp() = nullptr;
+    x->VFi() = 0;
+    journal_.SaveVertex(w);
+    w->P() = p + (first - p) * s;
+    x->P() = p + (lastP - p) * s;
+    std::vector<FaceType*> changed{F};
+    for (int k = i; k < n; ++k) {
+      CornerT c = st.corners[size_t(k)];
+      journal_.SaveFace(c.f);
+      c.f->V(c.z) = x;
+      changed.push_back(c.f);
+    }
+    for (int k = 0; k < i; ++k) changed.push_back(st.corners[size_t(k)].f);
+    const CornerT before = st.corners[size_t(i - 1)];  // (w, nb[i-1], a): edge z+2 runs a -> w
+    const CornerT after = st.corners[size_t(i)];       // (x, a, nb[i+1]): edge z runs x -> a
+    F->ImportData(*after.f);
+    F->ClearS();
+    F->V(0) = w;
+    F->V(1) = a;
+    F->V(2) = x;
+    for (int z = 0; z < 3; ++z) {
+      F->VFp(z) = nullptr;
+      F->VFi(z) = 0;
+    }
+    auto link = [&](FaceType* f, int e, FaceType* g, int ge) {
+      journal_.SaveFace(f);
+      journal_.SaveFace(g);
+      f->FFp(e) = g;
+      f->FFi(e) = ge;
+      g->FFp(ge) = f;
+      g->FFi(ge) = e;
+    };
+    link(F, 0, before.f, (before.z + 2) % 3);  // (w, a) ~ (a, w)
+    link(F, 1, after.f, after.z);              // (a, x) ~ (x, a)
+    F->FFp(2) = F;                             // (x, w): the new boundary edge
+    F->FFi(2) = 2;
+    for (FaceType* f : changed) {
+      journal_.SaveFace(f);
+      UpdateNormal(f);
+    }
+    x->VFp() = F;
+    x->VFi() = 2;
+    for (VertexType* q : {w, x, a}) RelinkVF(q);
     Result geo = CheckGeometry(changed, ref, refArea);
     if (!geo) {
       RollbackTo(cp);
