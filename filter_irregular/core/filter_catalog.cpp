@@ -347,6 +347,36 @@ std::vector<FilterSpec> MakeCatalog() {
   };
   f.apply = ApplyAutomaticReduction;
   c.push_back(f);
+
+  f = FilterSpec();
+  f.id = kBoundary;
+  f.name = "Irregular Vertices: Boundary Operation";
+  f.pythonName = "meshing_irregular_boundary_operation";
+  f.classes = kRemeshing | kSelection;
+  f.info =
+      "Lets irregular vertices leave or enter the mesh through its boundary (eq. 2 counts boundary vertices too). "
+      "A boundary vertex is regular at valence round(corner angle / 60) + 1: 4 on a smooth stretch, so a boundary "
+      "vertex of valence 3 there counts as a v5 and one of valence 5 as a v7. Absorb into the boundary: select an "
+      "interior v5 or v7 next to the boundary (a v5 leaves by splitting a boundary neighbour, a v7 by collapsing a "
+      "boundary edge it faces; a boundary irregular vertex there is cancelled when possible), or the two vertices of "
+      "a 5-7 pair next to the boundary. Move along the boundary: select a boundary vertex of valence 3 on a smooth "
+      "stretch; it moves one vertex towards the chosen side. Generate a 5-7 pair from the boundary: select a regular "
+      "boundary vertex (valence 4); one flip makes an interior 5-7 pair next to it and leaves a boundary 5-7 pair "
+      "(valences 3 and 5). All or nothing: a refused operation leaves the mesh unchanged and says why. The "
+      "resulting irregular vertices are selected. Relax after editing: the 2-ring of the edit is relaxed; boundary "
+      "vertices slide along the boundary as it was (corners, whose corner angle differs from 180 degrees by 30 or "
+      "more, stay fixed).";
+  f.params = {
+      Enum("operation", 0, {"Absorb into the boundary", "Move along the boundary", "Generate a 5-7 pair from the boundary"},
+           "Operation", "What to do with the selected vertex (or 5-7 pair)."),
+      Enum("side", 0, {"First boundary neighbour", "Second boundary neighbour"}, "Side",
+           "Move along / Generate: towards which boundary neighbour of the selected vertex. The first is the one "
+           "whose boundary edge comes first going counter-clockwise around the vertex (seen from outside)."),
+      RelaxAfterEditing(),
+      Colorize(),
+  };
+  f.apply = ApplyBoundary;
+  c.push_back(f);
   return c;
 }
 
