@@ -86,7 +86,7 @@ EXERCISED = {
     (AUTOMATIC, "relaxation"): ["test_automatic_reduction::test_deterministic_and_every_parameter_has_its_effect"],
     (AUTOMATIC, "timelimit"): ["test_automatic_reduction::test_time_limit_on_a_larger_mesh"],
     (AUTOMATIC, "colorize"): ["test_automatic_reduction::test_users_colours_and_quality_survive_where_no_edit_reaches"],
-    (BOUNDARY, "operation"): ["test_boundary::test_absorbed_v5_then_moved_along_the_boundary",
+    (BOUNDARY, "operation"): ["test_boundary::test_boundary_v3_moves_along_the_boundary",
                               "test_boundary::test_generated_pair_is_absorbed_again"],
     (BOUNDARY, "side"): ["test_boundary::test_generated_pair_is_absorbed_again"],
     (BOUNDARY, "relax"): ["test_boundary::test_generated_pair_is_absorbed_again"],

@@ -18,15 +18,11 @@
 
 using namespace vcg_ext::irregular;
 using test::At;
+using test::ExpectValid;
 using test::TMesh;
 
 namespace {
 
-void ExpectValid(TMesh& m) {
-  Result r = CheckInvariants(m);
-  EXPECT_TRUE(r.ok) << r.reason;
-  EXPECT_TRUE(Summarize(m).GaussBonnetHolds());
-}
 
 /// Every vertex has its old valence except those in `changed` (0: deleted).
 void ExpectValences(TMesh& m, const std::vector<int>& before, const std::map<int, int>& changed) {

@@ -5,7 +5,9 @@
 #include <cmath>
 #include <vector>
 
+#include <gtest/gtest.h>
 #include <vcg/complex/complex.h>
+#include <vcg_ext/irregular/mesh_checks.h>
 
 #include "test_mesh.h"
 
@@ -45,6 +47,13 @@ inline void HexPatchWithHole(TMesh& m, int radius, int holeRadius = 1) {
     if (std::abs(q) < holeRadius && std::abs(r) < holeRadius && std::abs(q + r) < holeRadius) del.push_back(int(i));
   }
   RemoveFaces(m, del);
+}
+
+/// Invariants (with the boundary consistency checks) and eq. 2.
+inline void ExpectValid(TMesh& m) {
+  vcg_ext::irregular::Result r = vcg_ext::irregular::CheckInvariants(m);
+  EXPECT_TRUE(r.ok) << r.reason;
+  EXPECT_TRUE(vcg_ext::irregular::Summarize(m).GaussBonnetHolds());
 }
 
 /// Index of the live face with these three vertices (any order), or -1.

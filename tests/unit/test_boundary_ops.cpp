@@ -16,15 +16,11 @@
 
 using namespace vcg_ext::irregular;
 using test::At;
+using test::ExpectValid;
 using test::TMesh;
 
 namespace {
 
-void ExpectValid(TMesh& m) {
-  Result r = CheckInvariants(m);
-  EXPECT_TRUE(r.ok) << r.reason;
-  EXPECT_TRUE(Summarize(m).GaussBonnetHolds());
-}
 
 /// Live vertices irregular by the boundary valence rule, split by where they are.
 struct Irregular {

@@ -478,10 +478,13 @@ class MeshEditor {
     for (FaceType* dead : {f0, f1})
       if (dead) vcg::tri::Allocator<MeshType>::DeleteFace(m_, *dead);
     vcg::tri::Allocator<MeshType>::DeleteVertex(m_, *u);
-    // v's own faces may all be gone (an ear collapsed across a boundary edge): start its VF
-    // list from one of u's faces, which are v's now.
+    // v's own faces may all be gone (an ear collapsed across a boundary edge): then start its
+    // VF list from one of u's faces, which are v's now. (Otherwise leave it: the VF order, and
+    // so the order of stars, stays what it was before boundary editing existed.)
+    bool vKeepsAFace = false;
+    for (auto& c : sv.corners) vKeepsAFace = vKeepsAFace || (c.f != f0 && c.f != f1);
     for (auto& c : su.corners)
-      if (c.f != f0 && c.f != f1) {
+      if (!vKeepsAFace && c.f != f0 && c.f != f1) {
         v->VFp() = c.f;
         v->VFi() = c.z;
         break;

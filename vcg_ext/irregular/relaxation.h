@@ -19,9 +19,9 @@
 // made from the original mesh). Then LocalRelax moves each boundary vertex along the boundary:
 // towards the midpoint of its two boundary neighbours, projected onto the original boundary
 // polyline, so the holes keep their shape; a corner (corner angle, the sum of its face angles,
-// differing from 180 degrees by at least RelaxOptions::cornerAngleDeg, default 30: exactly the
-// vertices the boundary valence rule of topology.h gives a regular valence other than 4) stays
-// fixed. GlobalRelax keeps boundary vertices fixed (they are its boundary conditions).
+// differing from 180 degrees by at least RelaxOptions::cornerAngleDeg, default 30: the
+// vertices the boundary valence rule of topology.h gives a regular valence other than 4, and
+// those at exactly 150 degrees) stays fixed. GlobalRelax keeps boundary vertices fixed (they are its boundary conditions).
 #pragma once
 
 #include <algorithm>

@@ -146,7 +146,8 @@ inline int RegularValence(bool boundary) { return boundary ? 4 : 6; }
 /// equilateral-like, i.e. when it has angle / 60 faces: valence round(angle / 60) + 1, at
 /// least 2 (one face). So: 4 on a smooth stretch (angle in [150, 210)), 3 at a 120 degree
 /// corner, 2 at 60, 5 at 240. Rounding is half away from zero (std::lround), so a boundary
-/// vertex is a *corner* exactly when |angle - 180| >= 30 (IsBoundaryCorner).
+/// vertex is a *corner* (IsBoundaryCorner) exactly when its angle is below 150 or at least 210
+/// degrees, i.e. |angle - 180| >= 30 but for an angle of exactly 150.
 inline int RegularBoundaryValence(double cornerAngleDeg) {
   if (!(cornerAngleDeg > 0)) return 4;  // no faces / not a number: treat as a smooth stretch
   return std::max(2, int(std::lround(cornerAngleDeg / 60.0)) + 1);

@@ -115,7 +115,7 @@ def regular_valences(mesh):
 
 
 def corner_mask(mesh):
-    """Boundary vertices whose regular valence is not 4 (|corner angle - 180| >= 30)."""
+    """Boundary vertices whose regular valence is not 4 (corner angle below 150 or at least 210)."""
     m = as_mesh(mesh)
     return referenced_mask(m) & boundary_vertex_mask(m) & (regular_valences(m) != 4)
 
