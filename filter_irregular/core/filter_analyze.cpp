@@ -23,6 +23,7 @@ FilterOutcome ApplyAnalyze(FilterContext& ctx, const ParamValues& par) {
   std::vector<double> boundary(size_t(top) + 1, 0.0);
   for (auto& kv : s.boundaryHistogram) boundary[size_t(kv.first)] = kv.second;
   out.SetVector("boundary_valence_histogram", boundary);
+  out.SetInt("boundary_corners", s.boundaryCorners);
   out.SetInt("euler_characteristic", s.eulerCharacteristic);
   out.SetInt("genus", s.genus);
   out.SetInt("boundary_loops", s.boundaryLoops);

@@ -99,17 +99,23 @@ std::vector<FilterSpec> MakeCatalog() {
   f.changesConnectivity = false;
   f.info =
       "Colours vertices by valence (v3- purple, v4 cyan, v5 blue, v6 grey, v7 orange, v8 red, v9+ dark red; "
-      "boundary vertices by valence + 2, so regular boundary vertices of valence 4 are grey), writes the valence "
+      "boundary vertices by valence + 6 - their regular valence, so regular boundary vertices are grey), writes "
+      "the valence "
       "into vertex quality, optionally selects irregular vertices, and logs the valence histogram, the irregular "
       "count, Euler characteristic, genus, boundary loops and whether the discrete Gauss-Bonnet identity "
       "sum(6 - valence) + sum_boundary(4 - valence) = 6 chi holds (Li et al., Editing Operations for Irregular "
-      "Vertices in Triangle Meshes, eq. 2). Returns the counts (pymeshlab: a dict). Refuses non-manifold or "
+      "Vertices in Triangle Meshes, eq. 2). A boundary vertex is regular at valence round(corner angle / 60) + 1, "
+      "the corner angle being the sum of its face angles: 4 on a smooth stretch (150 to 210 degrees), 3 at a "
+      "120 degree corner, 2 at 60 degrees, 5 at 240. Returns the counts (pymeshlab: a dict; boundary_irregular: "
+      "boundary vertices irregular by that rule, boundary_corners: boundary vertices whose regular valence is "
+      "not 4). Refuses non-manifold or "
       "polygonal meshes without changing them.";
   f.params = {
       Enum("select", 1, {"None", "All irregular", "Only valence"}, "Select vertices",
            "Replace the vertex selection: None keeps it as it is; All irregular selects every vertex of valence != 6 "
-           "(boundary: != 4); Only valence selects the vertices of the valence below (boundary vertices count as "
-           "valence + 2)."),
+           "(boundary: != the regular valence of its corner); Only valence selects the vertices of the valence below "
+           "(boundary vertices count as "
+           "valence + 6 - their regular valence, i.e. valence + 2 on a smooth stretch)."),
       Int("valence", 5, 0, 1000, "Valence to select",
           "Used with 'Only valence': select the vertices of this (interior-equivalent) valence."),
       Bool("colorize", true, "Colour by valence",
@@ -371,6 +377,36 @@ std::vector<FilterSpec> MakeCatalog() {
       Colorize(),
   };
   f.apply = ApplyAutomaticReduction;
+  c.push_back(f);
+
+  f = FilterSpec();
+  f.id = kBoundary;
+  f.name = "Irregular Vertices: Boundary Operation";
+  f.pythonName = "meshing_irregular_boundary_operation";
+  f.classes = kRemeshing | kSelection;
+  f.info =
+      "Lets irregular vertices leave or enter the mesh through its boundary (eq. 2 counts boundary vertices too). "
+      "A boundary vertex is regular at valence round(corner angle / 60) + 1: 4 on a smooth stretch, so a boundary "
+      "vertex of valence 3 there counts as a v5 and one of valence 5 as a v7. Absorb into the boundary: select an "
+      "interior v5 or v7 next to the boundary (a v5 leaves by splitting a boundary neighbour, a v7 by collapsing a "
+      "boundary edge it faces; a boundary irregular vertex there is cancelled when possible), or the two vertices of "
+      "a 5-7 pair next to the boundary. Move along the boundary: select a boundary vertex of valence 3 on a smooth "
+      "stretch; it moves one vertex towards the chosen side. Generate a 5-7 pair from the boundary: select a regular "
+      "boundary vertex (valence 4); one flip makes an interior 5-7 pair next to it and leaves a boundary 5-7 pair "
+      "(valences 3 and 5). All or nothing: a refused operation leaves the mesh unchanged and says why. The "
+      "resulting irregular vertices are selected. Relax after editing: the 2-ring of the edit is relaxed; boundary "
+      "vertices slide along the boundary as it was (corners, whose corner angle differs from 180 degrees by 30 or "
+      "more, stay fixed).";
+  f.params = {
+      Enum("operation", 0, {"Absorb into the boundary", "Move along the boundary", "Generate a 5-7 pair from the boundary"},
+           "Operation", "What to do with the selected vertex (or 5-7 pair)."),
+      Enum("side", 0, {"First boundary neighbour", "Second boundary neighbour"}, "Side",
+           "Move along / Generate: towards which boundary neighbour of the selected vertex. The first is the one "
+           "whose boundary edge comes first going counter-clockwise around the vertex (seen from outside)."),
+      RelaxAfterEditing(),
+      Colorize(),
+  };
+  f.apply = ApplyBoundary;
   c.push_back(f);
   return c;
 }

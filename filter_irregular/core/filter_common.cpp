@@ -48,10 +48,10 @@ std::string HistogramText(const std::map<int, int>& h) {
 irr::TopologySummary SummaryOf(CMeshO& m) { return irr::Summarize(m); }
 
 void AddSummaryValues(FilterOutcome& out, const irr::TopologySummary& s, const std::string& suffix) {
-  // Interior valence k counts as k; a boundary vertex as its equivalent valence + 2, as in the
-  // legend, so "v5" means "one unit of positive curvature" everywhere.
-  std::map<int, int> equivalent = s.histogram;
-  for (auto& kv : s.boundaryHistogram) equivalent[kv.first + 2] += kv.second;
+  // Interior valence k counts as k; a boundary vertex as valence + 6 - its regular valence
+  // (the boundary valence rule, topology.h), as in the legend, so "v5" means "one valence
+  // short of regular" everywhere: valence 3 on a smooth stretch, 2 at a 120 degree corner.
+  const std::map<int, int>& equivalent = s.equivalentHistogram;
   auto count = [&](int lo, int hi) {
     long long n = 0;
     for (auto& kv : equivalent)
@@ -59,6 +59,7 @@ void AddSummaryValues(FilterOutcome& out, const irr::TopologySummary& s, const s
     return n;
   };
   out.SetInt("irregular" + suffix, s.irregular);
+  out.SetInt("boundary_irregular" + suffix, s.boundaryIrregular);
   out.SetInt("v3" + suffix, count(0, 3));
   out.SetInt("v4" + suffix, count(4, 4));
   out.SetInt("v5" + suffix, count(5, 5));
@@ -85,8 +86,12 @@ irr::TopologySummary PaintAndLog(FilterContext& ctx, bool colorize, int selectMo
   ctx.Logf("Irregular vertices: %d of %d vertices (%.2f%%)", s.irregular, s.vertices,
            s.vertices ? 100.0 * s.irregular / s.vertices : 0.0);
   ctx.Logf("Valence histogram (interior):%s", HistogramText(s.histogram).c_str());
-  if (!s.boundaryHistogram.empty())
-    ctx.Logf("Valence histogram (boundary, regular = 4):%s", HistogramText(s.boundaryHistogram).c_str());
+  if (!s.boundaryHistogram.empty()) {
+    ctx.Logf("Valence histogram (boundary):%s", HistogramText(s.boundaryHistogram).c_str());
+    ctx.Logf("Boundary: %d irregular vertices, %d corners (regular valence round(corner angle / 60) + 1: "
+             "4 on a smooth stretch, 3 at 120 degrees)",
+             s.boundaryIrregular, s.boundaryCorners);
+  }
   ctx.Logf("Euler characteristic %d, genus %d, boundary loops %d, components %d (V %d, E %d, F %d)",
            s.eulerCharacteristic, s.genus, s.boundaryLoops, s.components, s.vertices, s.edges, s.faces);
   ctx.Logf("Gauss-Bonnet (eq. 2): sum of valence defects %d, 6 x chi = %d: %s", s.gaussBonnetSum,

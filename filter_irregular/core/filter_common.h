@@ -31,7 +31,9 @@ vcg_ext::irregular::TopologySummary PaintAndLog(FilterContext& ctx, bool coloriz
                                                 bool writeQuality, int* selected = nullptr);
 
 /// Output values of a summary, with a suffix ("" for Analyze, "_before" / "_after" for the
-/// editing filters): irregular, v3 (valence 3 or less), v4, v5, v7, v8, v9 (9 or more), and
+/// editing filters): irregular, boundary_irregular (the boundary vertices among them, by the
+/// boundary valence rule of topology.h), v3 (equivalent valence 3 or less), v4, v5, v7, v8,
+/// v9 (9 or more), and
 /// valence_histogram (a vector: entry k counts interior vertices of valence k; boundary
 /// vertices in boundary_valence_histogram, without suffix variants).
 void AddSummaryValues(FilterOutcome& out, const vcg_ext::irregular::TopologySummary& s, const std::string& suffix);

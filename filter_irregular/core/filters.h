@@ -18,6 +18,7 @@ enum FilterId {
   kCancelQuadruple,
   kGenerate,
   kAutomaticReduction,
+  kBoundary,  // appended: ids above keep their values
 };
 
 FilterOutcome ApplyAnalyze(FilterContext& ctx, const ParamValues& par);             // filter_analyze.cpp
@@ -30,5 +31,6 @@ FilterOutcome ApplyCancelTriple(FilterContext& ctx, const ParamValues& par);    
 FilterOutcome ApplyCancelQuadruple(FilterContext& ctx, const ParamValues& par);     // filter_composite.cpp
 FilterOutcome ApplyGenerate(FilterContext& ctx, const ParamValues& par);            // filter_composite.cpp
 FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par);  // filter_automatic_reduction.cpp
+FilterOutcome ApplyBoundary(FilterContext& ctx, const ParamValues& par);            // filter_boundary.cpp
 
 }  // namespace filter_irregular

@@ -59,10 +59,16 @@ def test_mesh_with_border():
     s = fo.summary(m)
     assert fo.boundary_vertex_mask(m).any() and s["boundary_loops"] >= 1
     assert s["gauss_bonnet_holds"]
-    # equivalent valence: boundary valence + 2
+    # equivalent valence: valence + 6 - regular valence; boundary valence + 2 on a smooth stretch
     eq = fo.equivalent_valences(m)
     b = fo.boundary_vertex_mask(m)
-    assert np.array_equal(eq[b], fo.valences(m)[b] + 2) and np.array_equal(eq[~b], fo.valences(m)[~b])
+    smooth = b & ~fo.corner_mask(m)
+    assert smooth.any()
+    assert np.array_equal(eq[smooth], fo.valences(m)[smooth] + 2) and np.array_equal(eq[~b], fo.valences(m)[~b])
+    assert np.array_equal(eq[b], fo.valences(m)[b] + 6 - fo.regular_valences(m)[b])
+    # corners are exactly the boundary vertices whose angle is below 150 or at least 210 degrees
+    ang = fo.corner_angles(m)
+    assert np.array_equal(fo.corner_mask(m)[b], ((ang < 150) | (ang >= 210))[b])
     assert s["boundary_valence_histogram"].sum() == b.sum()
     assert s["valence_histogram"].sum() + b.sum() == len(m.vertices)
 
@@ -83,13 +89,17 @@ def test_grid_patch():
     assert bnd.sum() == 16 and fo.boundary_loop_count(m) == 1
     assert fo.euler_characteristic(m) == 1 and fo.gauss_bonnet_sum(m) == 6 and fo.genus(m) == 0
     assert (val[~bnd] == 6).all()
-    # Only the corners are irregular: valence 2 or 3 on the boundary (4 is regular there).
+    # The four corners span 90 degrees: regular at round(90 / 60) + 1 = 3 by the boundary
+    # valence rule. Corners 0 and 24 (two faces) have valence 3 and are regular; corners 4 and
+    # 20 (one face) have valence 2 and are irregular. The sides (180 degrees) are 4: regular.
     corners = [0, 4, 20, 24]
-    assert sorted(np.nonzero(fo.irregular_mask(m))[0]) == corners
-    assert sorted(val[corners]) == [2, 2, 3, 3]
+    assert (fo.corner_angles(m)[corners] == 90).all() and (fo.regular_valences(m)[corners] == 3).all()
+    assert val[corners].tolist() == [3, 2, 2, 3]
+    assert sorted(np.nonzero(fo.irregular_mask(m))[0]) == [4, 20]
     s = fo.summary(m)
-    # counted by equivalent valence (boundary + 2): valence 2 -> v4, valence 3 -> v5
-    assert (s["v3"], s["v4"], s["v5"], s["irregular"]) == (0, 2, 2, 4)
+    # counted by equivalent valence (valence + 6 - regular): valence 2 at a 90-degree corner -> v5
+    assert (s["v3"], s["v4"], s["v5"], s["irregular"]) == (0, 0, 2, 2)
+    assert (s["boundary_irregular"], s["boundary_corners"]) == (2, 4)
 
 
 def test_one_ring_order_and_neighbour_numbering():

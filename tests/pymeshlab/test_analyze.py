@@ -96,15 +96,65 @@ def test_select_only_a_valence_nobody_has():
     assert out["selected"] == 0 and not ms.current_mesh().vertex_selection_array().any()
 
 
-def test_boundary_vertices_are_regular_at_valence_four():
+def test_boundary_vertices_follow_the_boundary_valence_rule():
+    """A boundary vertex is regular at round(corner angle / 60) + 1: 4 on a smooth stretch; the
+    selection of 'All irregular' and the grey of the legend follow that rule."""
     ms = load("mesh_with_border.off")
-    apply(ms, ANALYZE)
+    out = apply(ms, ANALYZE)
     m = tri(ms)
     bnd = fo.boundary_mask(m)
+    reg = fo.regular_valences(m)
     sel = ms.current_mesh().vertex_selection_array()
-    assert (bnd & (fo.valences(m) == 4)).any() and not sel[bnd & (fo.valences(m) == 4)].any()
-    assert sel[bnd & (fo.valences(m) != 4)].all()
-    assert (rgb(ms)[bnd & (fo.valences(m) == 4)] == (200, 200, 200)).all()
+    smooth4 = bnd & ~fo.corner_mask(m) & (fo.valences(m) == 4)
+    assert smooth4.any() and not sel[smooth4].any()
+    assert np.array_equal(sel[bnd], (fo.valences(m) != reg)[bnd])
+    assert (rgb(ms)[bnd & (fo.valences(m) == reg)] == (200, 200, 200)).all()
+    assert out["boundary_irregular"] == int((sel & bnd).sum())
+    assert out["boundary_corners"] == int(fo.corner_mask(m).sum())
+
+
+def hex_disc(radius):
+    """A planar hexagon of the regular triangular lattice (6 corners of 120 degrees, valence 3)."""
+    cells = [(q, r) for q in range(-radius, radius + 1) for r in range(-radius, radius + 1) if abs(q + r) <= radius]
+    index = {c: i for i, c in enumerate(cells)}
+    v = np.array([[q + 0.5 * r, r * np.sqrt(3) / 2, 0.0] for q, r in cells])
+    f = []
+    for q, r in cells:
+        a, b, d, e = index.get((q, r)), index.get((q + 1, r)), index.get((q, r + 1)), index.get((q - 1, r + 1))
+        if b is not None and d is not None:
+            f.append([a, b, d])
+        if d is not None and e is not None:
+            f.append([a, d, e])
+    return v, np.array(f)
+
+
+def test_hexagon_corners_of_120_degrees_are_regular_at_valence_three(tmp_path):
+    import pymeshlab
+    v, f = hex_disc(4)
+    path = tmp_path / "hexagon.off"
+    with open(path, "w") as out:
+        out.write("OFF\n%d %d 0\n" % (len(v), len(f)))
+        out.writelines("%r %r %r\n" % tuple(p) for p in v.tolist())
+        out.writelines("3 %d %d %d\n" % tuple(t) for t in f.tolist())
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(str(path))
+    out = apply(ms, ANALYZE, select="All irregular")
+    m = tri(ms)
+    assert_matches_oracle(out, m)
+    assert out["irregular"] == 0 and out["boundary_irregular"] == 0 and out["boundary_corners"] == 6
+    # eq. 2 still counts the six corners against 4: 6 x (4 - 3) = 6 chi
+    assert out["gauss_bonnet_sum"] == 6 and out["gauss_bonnet_holds"]
+    assert not ms.current_mesh().vertex_selection_array().any()
+
+
+@pytest.mark.parametrize("name", ["holes.off", "mushroom.off", "cylinder_locally_refined.off"])
+def test_meshes_with_holes_match_the_oracle(name):
+    ms = load(name)
+    out = apply(ms, ANALYZE, select="All irregular")
+    m = tri(ms)
+    assert_matches_oracle(out, m)
+    assert out["boundary_loops"] >= 1
+    assert np.array_equal(ms.current_mesh().vertex_selection_array(), fo.irregular_mask(m))
 
 
 def test_select_none_keeps_the_users_selection():

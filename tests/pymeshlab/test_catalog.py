@@ -1,4 +1,4 @@
-"""The plugin as pymeshlab sees it: its ten filters, every parameter with its Python name, type
+"""The plugin as pymeshlab sees it: its eleven filters, every parameter with its Python name, type
 and default (as README and filter_catalog.cpp state them), a table saying which test exercises
 each parameter (so a parameter added without a test fails here), and the two parameters every
 editing filter shares, 'relax' and 'colorize', checked on each of them."""
@@ -10,7 +10,7 @@ import pymeshlab
 import pytest
 
 import fi_oracle as fo
-from fi_pm import (AGGREGATE, ANALYZE, ATOMIC, AUTOMATIC, CANCEL_QUADRUPLE, CANCEL_TRIPLE, FILTERS, GENERATE,
+from fi_pm import (AGGREGATE, ANALYZE, ATOMIC, AUTOMATIC, BOUNDARY, CANCEL_QUADRUPLE, CANCEL_TRIPLE, FILTERS, GENERATE,
                    MOVE_PAIR, REDUCE, RELAX, apply, index_by_position, painted, quality, rgb, select, state, tri)
 
 # pymeshlab name -> [(python parameter name, type as pymeshlab prints it, default as printed)]
@@ -35,6 +35,8 @@ EXPECTED = {
                 ("hausdorffbudget", "float", "0.5"), ("minangle", "float", "30"), ("maxtravel", "int", "12"),
                 ("protect", "str", "'Nothing'"), ("relaxation", "str", "'Local'"), ("timelimit", "float", "60"),
                 ("colorize", "bool", "True")],
+    BOUNDARY: [("operation", "str", "'Absorb into the boundary'"), ("side", "str", "'First boundary neighbour'"),
+               ("relax", "bool", "True"), ("colorize", "bool", "True")],
 }
 
 # (filter, parameter) -> the tests that run it with other values than the default and check
@@ -90,6 +92,11 @@ EXERCISED = {
     (AUTOMATIC, "relaxation"): ["test_automatic_reduction::test_deterministic_and_every_parameter_has_its_effect"],
     (AUTOMATIC, "timelimit"): ["test_automatic_reduction::test_time_limit_on_a_larger_mesh"],
     (AUTOMATIC, "colorize"): ["test_automatic_reduction::test_users_colours_and_quality_survive_where_no_edit_reaches"],
+    (BOUNDARY, "operation"): ["test_boundary::test_boundary_v3_moves_along_the_boundary",
+                              "test_boundary::test_generated_pair_is_absorbed_again"],
+    (BOUNDARY, "side"): ["test_boundary::test_generated_pair_is_absorbed_again"],
+    (BOUNDARY, "relax"): ["test_boundary::test_generated_pair_is_absorbed_again"],
+    (BOUNDARY, "colorize"): ["test_boundary::test_generated_pair_is_absorbed_again"],
 }
 
 
@@ -104,7 +111,7 @@ def parameter_lists(capfd):
     return out
 
 
-def test_the_plugin_provides_ten_filters():
+def test_the_plugin_provides_eleven_filters():
     import pymeshlab_irregular
     assert sorted(pymeshlab_irregular.load()) == sorted(FILTERS)
     for name in FILTERS:

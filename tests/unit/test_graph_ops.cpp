@@ -100,7 +100,12 @@ TEST(GraphOps, RefusalsLeaveMeshIdentical) {
   Result r = ed.Flip(boundary, nb);
   EXPECT_FALSE(r.ok);
   EXPECT_NE(r.reason.find("boundary"), std::string::npos) << r.reason;
-  EXPECT_FALSE(ed.Collapse(boundary, nb).ok);
+  // a boundary vertex into an interior neighbour: refused (the boundary vertex must survive)
+  const int inner = ed.Index(ed.Star(boundary).neighbors[1]);
+  ASSERT_FALSE(ed.IsBoundary(inner));
+  Result rc = ed.Collapse(boundary, inner);
+  EXPECT_FALSE(rc.ok);
+  EXPECT_NE(rc.reason.find("instead"), std::string::npos) << rc.reason;
   EXPECT_FALSE(ed.Split(boundary, nb, nb).ok);
   EXPECT_FALSE(ed.Flip(0, 0).ok);
   // not adjacent

@@ -137,3 +137,59 @@ TEST(Quality, MeasuresOnEquilateralLattice) {
   SurfaceProjector self(m);
   EXPECT_NEAR(HausdorffPercent(m, self), 0.0, 1e-4);
 }
+
+// With a BoundaryCurve, boundary vertices slide along the boundary as it was: a side vertex
+// pushed along its side comes back towards the middle of its boundary neighbours and stays on
+// the polyline; the six 120-degree corners stay exactly where they are. Without it, every
+// boundary vertex stays fixed.
+TEST(Relaxation, BoundaryVerticesSlideAlongTheBoundaryCornersFixed) {
+  for (int withCurve = 0; withCurve < 2; ++withCurve) {
+    TMesh m;
+    test::HexPatch(m, 4);
+    BoundaryCurve curve(m);
+    ASSERT_EQ(curve.Segments(), 24u);
+    // push every side vertex a quarter edge along its side (towards its first boundary neighbour)
+    std::vector<int> side, corner;
+    for (size_t i = 0; i < m.vert.size(); ++i) {
+      VertexStar<TMesh> st = StarOf<TMesh>(&m.vert[i]);
+      if (!st.boundary) continue;
+      (st.Valence() == 3 ? corner : side).push_back(int(i));
+    }
+    ASSERT_EQ(corner.size(), 6u);
+    ASSERT_EQ(side.size(), 18u);
+    std::vector<vcg::Point3f> pushed;
+    for (int v : side) {
+      VertexStar<TMesh> st = StarOf<TMesh>(&m.vert[size_t(v)]);
+      m.vert[size_t(v)].P() += (st.neighbors.front()->P() - m.vert[size_t(v)].P()) * 0.25f;
+    }
+    for (auto& v : m.vert) pushed.push_back(v.P());
+    auto offMid = [&](int v) {
+      VertexStar<TMesh> st = StarOf<TMesh>(&m.vert[size_t(v)]);
+      return ((st.neighbors.front()->P() + st.neighbors.back()->P()) * 0.5f - m.vert[size_t(v)].P()).Norm();
+    };
+    double before = 0;
+    for (int v : side) before += offMid(v);
+    std::vector<int> all;
+    for (size_t i = 0; i < m.vert.size(); ++i) all.push_back(int(i));
+    RelaxOptions ro;
+    ro.iterations = 20;
+    ro.boundaryCurve = withCurve ? &curve : nullptr;
+    LocalRelax(m, all, nullptr, ro);
+    double after = 0;
+    for (int v : side) after += offMid(v);
+    for (int v : corner) EXPECT_EQ(m.vert[size_t(v)].P(), pushed[size_t(v)]) << "corner " << v;
+    if (withCurve) {
+      EXPECT_LT(after, 0.2 * before);
+      for (int v : side) {
+        double d = 1;
+        curve.Closest(m.vert[size_t(v)].P(), &d);
+        EXPECT_LT(d, 1e-5) << "vertex " << v << " left the boundary";
+        EXPECT_NE(m.vert[size_t(v)].P(), pushed[size_t(v)]);
+      }
+    } else {
+      for (int v : side) EXPECT_EQ(m.vert[size_t(v)].P(), pushed[size_t(v)]);
+    }
+    EXPECT_TRUE(CheckInvariants(m).ok);
+    EXPECT_EQ(CountFoldedEdges(m), 0);
+  }
+}

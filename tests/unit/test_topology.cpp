@@ -69,7 +69,12 @@ TEST(Topology, HexDiscWithBoundary) {
   // boundary: 6 corners of valence 3, 18 side vertices of valence 4
   EXPECT_EQ(s.boundaryHistogram.at(3), 6);
   EXPECT_EQ(s.boundaryHistogram.at(4), 18);
-  EXPECT_EQ(s.irregular, 6);
+  // the corners span 120 degrees: regular at valence 3 by the boundary valence rule, so the
+  // disc has no irregular vertex, while eq. 2 still counts them against 4 (sum 6 = 6 chi)
+  EXPECT_EQ(s.irregular, 0);
+  EXPECT_EQ(s.boundaryIrregular, 0);
+  EXPECT_EQ(s.boundaryCorners, 6);
+  EXPECT_EQ(s.equivalentHistogram.at(6), 61);
   EXPECT_EQ(s.gaussBonnetSum, 6);
   EXPECT_TRUE(s.GaussBonnetHolds());
   VertexStar<TMesh> centre = StarOf<TMesh>(&m.vert[0]);
@@ -81,6 +86,35 @@ TEST(Topology, HexDiscWithBoundary) {
     VertexStar<TMesh> st = StarOf<TMesh>(&m.vert[i]);
     EXPECT_EQ(st.Valence(), vf.valence[i]);
     EXPECT_EQ(st.boundary, bool(vf.boundary[i]));
+  }
+}
+
+TEST(Topology, BoundaryValenceRule) {
+  EXPECT_EQ(RegularBoundaryValence(180), 4);
+  EXPECT_EQ(RegularBoundaryValence(120), 3);
+  EXPECT_EQ(RegularBoundaryValence(60), 2);
+  EXPECT_EQ(RegularBoundaryValence(240), 5);
+  EXPECT_EQ(RegularBoundaryValence(300), 6);
+  EXPECT_EQ(RegularBoundaryValence(90), 3);    // 1.5 rounds up
+  EXPECT_EQ(RegularBoundaryValence(20), 2);    // at least one face
+  EXPECT_EQ(RegularBoundaryValence(150), 4);   // the smooth stretch is [150, 210)
+  EXPECT_EQ(RegularBoundaryValence(149.9), 3);
+  EXPECT_EQ(RegularBoundaryValence(209.9), 4);
+  EXPECT_EQ(RegularBoundaryValence(210), 5);
+  EXPECT_FALSE(IsBoundaryCorner(170));
+  EXPECT_TRUE(IsBoundaryCorner(140));
+  EXPECT_EQ(EquivalentValence(3, 4), 5);
+  EXPECT_EQ(EquivalentValence(3, 3), 6);
+  EXPECT_EQ(EquivalentValence(7, 6), 7);
+  // the corner angle of a lattice vertex on a side of the hexagon is 3 x 60 degrees
+  TMesh m;
+  test::HexPatch(m, 2);
+  ValenceField<TMesh> vf = ComputeValences(m);
+  for (size_t i = 0; i < m.vert.size(); ++i) {
+    VertexStar<TMesh> st = StarOf<TMesh>(&m.vert[i]);
+    if (!st.boundary) continue;
+    EXPECT_NEAR(CornerAngleDeg(st), 60.0 * double(st.corners.size()), 1e-4);
+    EXPECT_EQ(RegularValenceOf(st), vf.regular[i]);
   }
 }
 
@@ -101,11 +135,28 @@ TEST(Legend, SelectionAndColours) {
   test::HexPatch(m, 3);
   ValenceField<TMesh> vf = ComputeValences(m);
   PaintValences(m, vf, true);
-  EXPECT_EQ(SelectByValence(m, vf, IrregularSelection::AllIrregular, 0), 6);  // the 6 corners
-  EXPECT_EQ(SelectByValence(m, vf, IrregularSelection::OnlyValence, 5), 6);   // corners: 3 + 2
-  EXPECT_EQ(SelectByValence(m, vf, IrregularSelection::OnlyValence, 6), int(m.vert.size()) - 6);
-  EXPECT_EQ(SelectByValence(m, vf, IrregularSelection::None, 0), int(m.vert.size()) - 6);  // unchanged
-  EXPECT_EQ(m.vert[0].C(), LegendColor(6));
+  // the 6 corners (valence 3 at 120 degrees) are regular by the boundary valence rule
+  EXPECT_EQ(SelectByValence(m, vf, IrregularSelection::AllIrregular, 0), 0);
+  EXPECT_EQ(SelectByValence(m, vf, IrregularSelection::OnlyValence, 5), 0);
+  EXPECT_EQ(SelectByValence(m, vf, IrregularSelection::OnlyValence, 6), int(m.vert.size()));
+  EXPECT_EQ(SelectByValence(m, vf, IrregularSelection::None, 0), int(m.vert.size()));  // unchanged
+  for (size_t i = 0; i < m.vert.size(); ++i) EXPECT_EQ(m.vert[i].C(), LegendColor(6)) << i;
+  // pull a corner out to 180 degrees: now a boundary v3 on a smooth stretch, i.e. a v5
+  int corner = -1;
+  for (size_t i = 0; i < m.vert.size(); ++i)
+    if (vf.boundary[i] && vf.valence[i] == 3) corner = int(i);
+  ASSERT_GE(corner, 0);
+  VertexStar<TMesh> cs = StarOf<TMesh>(&m.vert[size_t(corner)]);
+  // inwards until the corner angle is about 167 degrees; its two boundary neighbours close
+  // from 180 to about 157 degrees and stay regular at 4
+  const vcg::Point3f mid = (cs.neighbors.front()->P() + cs.neighbors.back()->P()) * 0.5f;
+  m.vert[size_t(corner)].P() = mid + (m.vert[size_t(corner)].P() - mid) * 0.2f;
+  vf = ComputeValences(m);
+  EXPECT_TRUE(vf.IsIrregular(size_t(corner)));
+  EXPECT_FALSE(vf.IsCorner(size_t(corner)));
+  EXPECT_EQ(vf.Equivalent(size_t(corner)), 5);
+  EXPECT_EQ(SelectByValence(m, vf, IrregularSelection::AllIrregular, 0), 1);
+  EXPECT_TRUE(m.vert[size_t(corner)].IsS());
   EXPECT_EQ(m.vert[0].Q(), 6.f);
 }
 

@@ -45,28 +45,11 @@
 
 #include "directions.h"
 #include "graph_ops.h"
+#include "graph_step.h"
 
 namespace vcg_ext {
 namespace irregular {
 
-/// One graph operation of sec. 6.1, as a step of an atomic operation.
-///   Flip:     flip edge (x, y).
-///   Collapse: collapse vertex x into y (x is deleted, y survives).
-///   Split:    split vertex x along its edges to y and z; x keeps the edges from y to z
-///             counter-clockwise, a new vertex takes the others (MeshEditor::Split(x, y, z)).
-struct GraphStep {
-  enum Kind { kFlip, kCollapse, kSplit };
-  Kind kind = kFlip;
-  int x = -1, y = -1, z = -1;
-  std::string Describe() const {
-    std::ostringstream o;
-    if (kind == kFlip) o << "flip edge (" << x << ", " << y << ")";
-    else if (kind == kCollapse) o << "collapse vertex " << x << " into " << y;
-    else o << "split vertex " << x << " along edges (" << x << ", " << y << ") and (" << x << ", " << z << ")";
-    return o.str();
-  }
-  bool operator==(const GraphStep& s) const { return kind == s.kind && x == s.x && y == s.y && z == s.z; }
-};
 
 /// Which graph operation realises an atomic move (fig. 7): any, or one of the three.
 enum class AtomicVia { Any = 0, Flip = 1, Collapse = 2, Split = 3 };

@@ -9,8 +9,33 @@
 //     vertex w' takes the second, d(w') = d2+3; a, b: d+1.
 //
 // Vertices are named by index into m.vert (pointers move when elements are added).
-// All operations refuse boundary vertices and edges: the paper's operations are defined on
-// closed surfaces, and a boundary vertex is regular at valence 4, so they act away from it.
+//
+// Boundaries. The paper defines the operations on closed surfaces; here they also act on and
+// next to a boundary whenever the result is a manifold with a consistent boundary (each
+// boundary vertex keeps one fan of faces, so exactly two boundary edges). Think of every
+// boundary loop as closed by a virtual cone vertex: the rules below are the closed-surface
+// rules (link condition, valence >= 3) applied to that closed surface. A boundary vertex has
+// valence >= 2 (one face), an interior one >= 3.
+//   Flip: an interior edge may touch the boundary (its ends or opposites on it); a boundary
+//     edge is never flipped.
+//   Collapse(u -> v):
+//     - interior edge, u interior, v on the boundary: v survives where it is (on the boundary
+//       curve); link condition: u and v share exactly the two opposite vertices.
+//       Valences: v: d(u)+d(v)-4; opposites: d-1.
+//     - interior edge, u on the boundary and v interior: refused (collapse v into u instead,
+//       so the boundary vertex survives);
+//     - interior edge with both ends on the boundary: refused, it would pinch the surface
+//       (the merged vertex would have two fans);
+//     - boundary edge (u, v) with apex a (the one face): link condition for boundary edges,
+//       u and v share exactly the neighbour a; v survives at the midpoint of the edge (or at
+//       v, or u: all on the boundary polyline; at the corner when one end is a corner, see
+//       topology.h); valences: v: d(u)+d(v)-3, a: d-1.
+//   Split(w; a, b) of a boundary vertex w: both (w,a) and (w,b) must be interior edges. The
+//     half that holds the boundary (the faces next to the two boundary edges) stays on the
+//     boundary at w's position; the other half becomes an interior vertex. Which half is
+//     which follows the same rule as inside: w keeps the edges from a to b counter-clockwise.
+//   SplitBoundary(w; a): the inverse of a boundary-edge collapse: w splits along one interior
+//     edge (w, a) into two boundary vertices joined by a new boundary edge (see there).
 // Every operation is journaled (journal.h): a refused operation, including one refused by the
 // geometric check after trying it, leaves the mesh exactly as it was.
 // Attributes are carried (attribute_transfer.h): texture coordinates by interpolation, face
@@ -71,6 +96,13 @@ class MeshEditor {
   VertexStar<MeshType> Star(int i) { return StarOf<MeshType>(V(i)); }
   int Valence(int i) { return Star(i).Valence(); }
   bool IsBoundary(int i) { return Star(i).boundary; }
+  /// Smallest valence a vertex may keep: 2 on the boundary (one face), 3 inside.
+  static int MinValence(bool boundary) { return boundary ? 2 : 3; }
+  /// Is (x, y) an edge with a face on one side only? False if they are not joined.
+  bool IsBoundaryEdge(int x, int y) {
+    CornerT c;
+    return EdgeCorner(x, y, c) && c.f->FFp(c.z) == c.f;
+  }
   bool Adjacent(int a, int b) { return Star(a).IndexOf(V(b)) >= 0; }
 
   /// The vertices opposite to edge (x, y): o[0] on the left of x->y (in the face x, y, o0),
@@ -86,21 +118,25 @@ class MeshEditor {
   }
 
   // ---------------------------------------------------------------- edge flip
-  /// Can edge (x, y) be flipped? Topology only: interior manifold edge, distinct opposite
-  /// vertices that are not already joined, x and y keep valence >= 3.
+  /// Can edge (x, y) be flipped? Topology only: interior manifold edge (its ends may lie on
+  /// the boundary), distinct opposite vertices that are not already joined, x and y keep
+  /// valence >= 3 (>= 2 on the boundary).
   Result CanFlip(int x, int y) {
     if (!IsLive(x) || !IsLive(y)) return Result::Fail("a vertex of the edge does not exist");
     CornerT c;
     if (!EdgeCorner(x, y, c)) return Fail("vertices ", x, " and ", y, " are not joined by an edge");
-    if (c.f->FFp(c.z) == c.f) return Fail("edge (", x, ", ", y, ") lies on the boundary");
-    if (IsBoundary(x) || IsBoundary(y)) return Fail("edge (", x, ", ", y, ") touches the boundary");
+    if (c.f->FFp(c.z) == c.f) return Fail("edge (", x, ", ", y, ") lies on the boundary (a boundary edge cannot be flipped)");
     int o[2];
     Opposites(x, y, o);
     if (o[0] == o[1]) return Fail("edge (", x, ", ", y, ") has the same vertex on both sides");
     if (Adjacent(o[0], o[1]))
       return Fail("flipping edge (", x, ", ", y, ") would duplicate the existing edge (", o[0], ", ", o[1], ")");
-    if (Valence(x) <= 3 || Valence(y) <= 3)
-      return Fail("flipping edge (", x, ", ", y, ") would leave a vertex of valence 2");
+    for (int e : {x, y}) {
+      VertexStar<MeshType> se = Star(e);
+      if (se.Valence() - 1 < MinValence(se.boundary))
+        return Fail("flipping edge (", x, ", ", y, ") would leave ", se.boundary ? "boundary vertex " : "vertex ", e,
+                    " with valence ", se.Valence() - 1);
+    }
     Result seam = attr_.EdgeSeamless(c.f, c.z);  // attributes: the flip would mix the seam's sides
     if (!seam) return Fail("flipping edge (", x, ", ", y, ") would mix the two sides of a texture seam: ", seam.reason);
     return Result::Ok();
@@ -142,13 +178,21 @@ class MeshEditor {
   }
 
   // ---------------------------------------------------------------- edge collapse
-  /// Can u be collapsed into v? Interior edge, link condition (u and v share exactly the two
-  /// opposite vertices), and every valence stays >= 3.
+  /// Can u be collapsed into v? Link condition (u and v share exactly the two opposite
+  /// vertices; on a boundary edge, exactly its apex), every valence stays >= 3 (>= 2 on the
+  /// boundary), and the boundary stays consistent (see the header comment: a boundary vertex
+  /// survives, an interior edge between two boundary vertices is refused).
   Result CanCollapse(int u, int v) {
     if (!IsLive(u) || !IsLive(v)) return Result::Fail("a vertex of the edge does not exist");
     if (!Adjacent(u, v)) return Fail("vertices ", u, " and ", v, " are not joined by an edge");
     VertexStar<MeshType> su = Star(u), sv = Star(v);
-    if (su.boundary || sv.boundary) return Fail("edge (", u, ", ", v, ") touches the boundary");
+    if (IsBoundaryEdge(u, v)) return CanCollapseBoundaryEdge(u, v, su, sv);
+    if (su.boundary && sv.boundary)
+      return Fail("edge (", u, ", ", v, ") joins two boundary vertices through the inside: collapsing it would pinch "
+                  "the surface");
+    if (su.boundary)
+      return Fail("vertex ", u, " lies on the boundary: collapse ", v, " into ", u,
+                  " instead, so that the boundary vertex survives");
     int o[2];
     Opposites(u, v, o);
     int common = 0;
@@ -157,9 +201,12 @@ class MeshEditor {
     if (common != 2 || o[0] == o[1])
       return Fail("collapsing edge (", u, ", ", v, ") would break the surface (link condition: its ends share ",
                   common, " neighbours instead of 2)");
-    if (Valence(o[0]) <= 3 || Valence(o[1]) <= 3)
-      return Fail("collapsing edge (", u, ", ", v, ") would leave a vertex of valence 2");
-    if (su.Valence() + sv.Valence() - 4 < 3)
+    for (int q : {o[0], o[1]}) {
+      VertexStar<MeshType> sq = Star(q);
+      if (sq.Valence() - 1 < MinValence(sq.boundary))
+        return Fail("collapsing edge (", u, ", ", v, ") would leave a vertex of valence ", sq.Valence() - 1);
+    }
+    if (su.Valence() + sv.Valence() - 4 < MinValence(sv.boundary))
       return Fail("collapsing edge (", u, ", ", v, ") would leave a vertex of valence < 3");
     Result seam = attr_.StarSeamless(su);  // attributes: interpolation needs one texture around u, v
     if (seam) seam = attr_.StarSeamless(sv);
@@ -168,13 +215,22 @@ class MeshEditor {
   }
 
   /// Collapses edge (u, v): u is deleted, v survives at the midpoint (or, if that folds the
-  /// surface, at v's or u's position). Returns Ok with v surviving.
+  /// surface, at v's or u's position). Returns Ok with v surviving. A boundary vertex v that
+  /// survives an interior edge stays where it is; on a boundary edge the survivor stays on
+  /// the boundary polyline, at the corner if exactly one end is a corner (topology.h).
   Result Collapse(int u, int v) {
     Result ok = CanCollapse(u, v);
     if (!ok) return ok;
     const CoordType pu = V(u)->P(), pv = V(v)->P();
+    std::vector<CoordType> targets{(pu + pv) / ScalarType(2), pv, pu};
+    if (IsBoundaryEdge(u, v)) {
+      const bool cu = IsBoundaryCorner(CornerAngleDeg(Star(u))), cv = IsBoundaryCorner(CornerAngleDeg(Star(v)));
+      if (cu != cv) targets = {cu ? pu : pv};
+    } else if (IsBoundary(v)) {
+      targets = {pv};
+    }
     Result last;
-    for (CoordType target : {(pu + pv) / ScalarType(2), pv, pu}) {
+    for (const CoordType& target : targets) {
       last = CollapseAt(u, v, target);
       if (last) return last;
     }
@@ -182,14 +238,21 @@ class MeshEditor {
   }
 
   // ---------------------------------------------------------------- vertex split
-  /// Can w be split along its edges to a and b? w interior, a != b both neighbours of w.
+  /// Can w be split along its edges to a and b? a != b both neighbours of w; on a boundary
+  /// vertex both edges must be interior (not the two boundary edges of w).
   Result CanSplit(int w, int a, int b) {
     if (!IsLive(w) || !IsLive(a) || !IsLive(b)) return Result::Fail("a vertex of the split does not exist");
     VertexStar<MeshType> s = Star(w);
-    if (s.boundary) return Fail("vertex ", w, " lies on the boundary");
     if (a == b) return Fail("a vertex split needs two different edges of vertex ", w);
-    if (s.IndexOf(V(a)) < 0 || s.IndexOf(V(b)) < 0)
-      return Fail("vertices ", a, " and ", b, " must both be neighbours of vertex ", w);
+    const int i = s.IndexOf(V(a)), j = s.IndexOf(V(b));
+    if (i < 0 || j < 0) return Fail("vertices ", a, " and ", b, " must both be neighbours of vertex ", w);
+    if (s.boundary) {
+      const int last = s.Valence() - 1;
+      for (int k : {i, j})
+        if (k == 0 || k == last)
+          return Fail("edge (", w, ", ", Index(s.neighbors[size_t(k)]), ") lies on the boundary: a boundary vertex is "
+                      "split along two interior edges");
+    }
     Result seam = attr_.StarSeamless(s);  // attributes: interpolation needs one texture around w
     if (!seam) return Fail("splitting vertex ", w, " cannot carry the texture: ", seam.reason);
     return Result::Ok();
@@ -207,6 +270,40 @@ class MeshEditor {
       if (last) return last;
     }
     return Fail("splitting vertex ", w, " ", last.reason);
+  }
+
+  // ---------------------------------------------------------------- boundary vertex split
+  /// Can boundary vertex w be split along its interior edge to a, the inverse of collapsing a
+  /// boundary edge? w on the boundary, (w, a) an interior edge.
+  Result CanSplitBoundary(int w, int a) {
+    if (!IsLive(w) || !IsLive(a)) return Result::Fail("a vertex of the split does not exist");
+    VertexStar<MeshType> s = Star(w);
+    if (!s.boundary) return Fail("vertex ", w, " does not lie on the boundary");
+    const int i = s.IndexOf(V(a));
+    if (i < 0) return Fail("vertex ", a, " is not a neighbour of vertex ", w);
+    if (i == 0 || i == s.Valence() - 1)
+      return Fail("edge (", w, ", ", a, ") lies on the boundary: a boundary vertex is split along an interior edge");
+    Result seam = attr_.StarSeamless(s);  // attributes: interpolation needs one texture around w
+    if (!seam) return Fail("splitting boundary vertex ", w, " cannot carry the texture: ", seam.reason);
+    return Result::Ok();
+  }
+
+  /// Splits boundary vertex w along its interior edge to a into two boundary vertices joined
+  /// by a new boundary edge, adding the face (w, a, x). With w's fan nb[0..n] (nb[0], nb[n]
+  /// its boundary neighbours) and a = nb[i]: w keeps nb[0..i], the new vertex x takes
+  /// nb[i..n]. Valences: w: i + 2, x: n - i + 2, a: +1 (sec. 6.1 rules on the surface closed
+  /// by a cone vertex: the inverse of Collapse across the new edge). w moves a share of the
+  /// way towards nb[0], x towards nb[n]: both stay on the boundary polyline.
+  /// *created receives x.
+  Result SplitBoundary(int w, int a, int* created = nullptr) {
+    Result ok = CanSplitBoundary(w, a);
+    if (!ok) return ok;
+    Result last;
+    for (ScalarType s : {ScalarType(1) / 3, ScalarType(1) / 6, ScalarType(0.05)}) {
+      last = SplitBoundaryWith(w, a, s, created);
+      if (last) return last;
+    }
+    return Fail("splitting boundary vertex ", w, " ", last.reason);
   }
 
   /// Recomputes the VF list of v from its fan, found through FF from any live corner of v.
@@ -244,6 +341,28 @@ class MeshEditor {
   }
 
  private:
+  /// CanCollapse for a boundary edge (u, v) with apex a: the link condition of the surface
+  /// closed by a virtual cone vertex (u and v share only a), and a keeps valence >= 2 (or 3).
+  /// The isolated triangle (a boundary loop of three edges) fails the latter.
+  Result CanCollapseBoundaryEdge(int u, int v, const VertexStar<MeshType>& su, const VertexStar<MeshType>& sv) {
+    CornerT c;
+    EdgeCorner(u, v, c);
+    const int a = Index(c.f->V((c.z + 2) % 3));
+    int common = 0;
+    for (VertexType* q : su.neighbors)
+      if (sv.IndexOf(q) >= 0) ++common;
+    if (common != 1)
+      return Fail("collapsing boundary edge (", u, ", ", v, ") would break the surface (link condition: its ends share ",
+                  common, " neighbours instead of 1)");
+    VertexStar<MeshType> sa = Star(a);
+    if (sa.Valence() - 1 < MinValence(sa.boundary))
+      return Fail("collapsing boundary edge (", u, ", ", v, ") would leave vertex ", a, " with valence ",
+                  sa.Valence() - 1, " (the triangle would vanish)");
+    if (su.Valence() + sv.Valence() - 3 < 2)
+      return Fail("collapsing boundary edge (", u, ", ", v, ") would leave a vertex of valence < 2");
+    return Result::Ok();
+  }
+
   template <class... Args>
   static Result Fail(const Args&... args) {
     std::ostringstream o;
@@ -315,12 +434,14 @@ class MeshEditor {
     VertexStar<MeshType> su = Star(ui);
     const int k = su.IndexOf(v);
     const int n = int(su.corners.size());
-    // f0 = (u, v, b) is corner k; f1 = (u, a, v) is corner k-1.
-    CornerT c0 = su.corners[size_t(k)], c1 = su.corners[size_t((k + n - 1) % n)];
+    // f0 = (u, v, b) is corner k; f1 = (u, a, v) is corner k-1. On a boundary edge (u is then
+    // on the boundary, v its first or last neighbour) only one of them exists.
+    const bool hasF0 = !su.boundary || k < n, hasF1 = !su.boundary || k > 0;
+    CornerT c0 = hasF0 ? su.corners[size_t(k)] : CornerT(), c1 = hasF1 ? su.corners[size_t((k + n - 1) % n)] : CornerT();
     FaceType* f0 = c0.f;
     FaceType* f1 = c1.f;
-    VertexType* a = c1.f->V((c1.z + 1) % 3);
-    VertexType* b = c0.f->V((c0.z + 2) % 3);
+    VertexType* a = f1 ? c1.f->V((c1.z + 1) % 3) : nullptr;
+    VertexType* b = f0 ? c0.f->V((c0.z + 2) % 3) : nullptr;
     std::vector<FaceType*> region;
     for (auto& c : su.corners) region.push_back(c.f);
     VertexStar<MeshType> sv = Star(vi);
@@ -335,21 +456,28 @@ class MeshEditor {
     const auto carried = attr_.BeforeCollapse(u, v, f0, region, target);  // attributes at target
 
     // Glue the outer neighbours of f0 across its edges (v,b) and (b,u), and of f1 across
-    // (u,a) and (a,v): each pair becomes one edge once f0, f1 vanish.
+    // (u,a) and (a,v): each pair becomes one edge once f0, f1 vanish. If one side was the
+    // boundary, the merged edge is a boundary edge of the other (CanCollapse refuses both).
     auto glue = [&](FaceType* f, int e1, int e2) {
       FaceType* g = f->FFp(e1);
       int gi = f->FFi(e1);
       FaceType* h = f->FFp(e2);
       int hi = f->FFi(e2);
+      if (g == f) std::swap(g, h), std::swap(gi, hi);
       journal_.SaveFace(g);
+      if (h == f) {
+        g->FFp(gi) = g;
+        g->FFi(gi) = gi;
+        return;
+      }
       journal_.SaveFace(h);
       g->FFp(gi) = h;
       g->FFi(gi) = hi;
       h->FFp(hi) = g;
       h->FFi(hi) = gi;
     };
-    glue(f0, (c0.z + 1) % 3, (c0.z + 2) % 3);
-    glue(f1, c1.z, (c1.z + 1) % 3);
+    if (f0) glue(f0, (c0.z + 1) % 3, (c0.z + 2) % 3);
+    if (f1) glue(f1, c1.z, (c1.z + 1) % 3);
     // f0 = (u, v, b): glued edges (v,b) and (b,u); f1 = (u, a, v): edges (u,a) and (a,v).
     // Every other face of u now uses v.
     std::vector<FaceType*> changed;
@@ -359,13 +487,24 @@ class MeshEditor {
       c.f->V(c.z) = v;
       changed.push_back(c.f);
     }
-    journal_.SaveFace(f0);
-    journal_.SaveFace(f1);
+    for (FaceType* dead : {f0, f1})
+      if (dead) journal_.SaveFace(dead);
     journal_.SaveVertex(u);
     journal_.SaveVertex(v);
-    vcg::tri::Allocator<MeshType>::DeleteFace(m_, *f0);
-    vcg::tri::Allocator<MeshType>::DeleteFace(m_, *f1);
+    for (FaceType* dead : {f0, f1})
+      if (dead) vcg::tri::Allocator<MeshType>::DeleteFace(m_, *dead);
     vcg::tri::Allocator<MeshType>::DeleteVertex(m_, *u);
+    // v's own faces may all be gone (an ear collapsed across a boundary edge): then start its
+    // VF list from one of u's faces, which are v's now. (Otherwise leave it: the VF order, and
+    // so the order of stars, stays what it was before boundary editing existed.)
+    bool vKeepsAFace = false;
+    for (auto& c : sv.corners) vKeepsAFace = vKeepsAFace || (c.f != f0 && c.f != f1);
+    for (auto& c : su.corners)
+      if (!vKeepsAFace && c.f != f0 && c.f != f1) {
+        v->VFp() = c.f;
+        v->VFi() = c.z;
+        break;
+      }
     v->P() = target;
     for (auto& c : sv.corners)
       if (c.f != f0 && c.f != f1) changed.push_back(c.f);
@@ -374,15 +513,15 @@ class MeshEditor {
       UpdateNormal(f);
     }
     RelinkVF(v);
-    RelinkVF(a);
-    RelinkVF(b);
+    if (a) RelinkVF(a);
+    if (b) RelinkVF(b);
     // vcg's Allocator fixes the pointers of live elements only when a later split reallocates
     // the vertex or face vector: the dead ones' would dangle. Clear them once the live VF
     // lists no longer pass through them (the journal above restores them by index).
     u->VFp() = nullptr;
     u->VFi() = -1;
     for (FaceType* dead : {f0, f1})
-      for (int z = 0; z < 3; ++z) {
+      for (int z = 0; dead && z < 3; ++z) {
         dead->V(z) = nullptr;
         dead->FFp(z) = nullptr;
         dead->VFp(z) = nullptr;
@@ -439,8 +578,11 @@ class MeshEditor {
     x->VFp() = nullptr;
     x->VFi() = 0;
     journal_.SaveVertex(w);
-    w->P() = p + (c1 - p) * s;
-    x->P() = p + (c2 - p) * s;
+    // A boundary w: the half whose corners wrap around the boundary gap (g1 if i > j, else g2)
+    // keeps the boundary and stays at w's position, on the boundary curve.
+    const bool wKeepsBoundary = st.boundary && i > j, xTakesBoundary = st.boundary && i < j;
+    w->P() = wKeepsBoundary ? p : p + (c1 - p) * s;
+    x->P() = xTakesBoundary ? p : p + (c2 - p) * s;
     std::vector<FaceType*> changed{fa, fb};
     for (auto& c : g2) {
       journal_.SaveFace(c.f);
@@ -487,6 +629,84 @@ class MeshEditor {
     for (VertexType* q : {w, x, a, b}) RelinkVF(q);
     Result geo = CheckGeometry(changed, ref, refArea);
     if (geo) geo = attr_.AfterSplit(carried, w, x, fa, fb, changed, geom_);
+    if (!geo) {
+      RollbackTo(cp);
+      return geo;
+    }
+    if (created) *created = xi;
+    return Result::Ok();
+  }
+
+  Result SplitBoundaryWith(int wi, int ai, ScalarType s, int* created) {
+    Checkpoint cp = Mark();
+    vcg::tri::Allocator<MeshType>::AddVertices(m_, 1);
+    vcg::tri::Allocator<MeshType>::AddFaces(m_, 1);
+    const int xi = int(m_.vert.size()) - 1;
+    FaceType* F = &m_.face.back();
+    VertexType* w = V(wi);
+    VertexType* x = V(xi);
+    VertexType* a = V(ai);
+    VertexStar<MeshType> st = Star(wi);
+    const int n = int(st.corners.size());
+    const int i = st.IndexOf(a);
+    CoordType ref(0, 0, 0);
+    ScalarType refArea = 0;
+    for (auto& c : st.corners) {
+      ref += (c.f->P(1) - c.f->P(0)) ^ (c.f->P(2) - c.f->P(0));
+      refArea += Area(c.f);
+    }
+    refArea /= ScalarType(n);
+    const CoordType p = w->P(), first = st.neighbors.front()->P(), lastP = st.neighbors.back()->P();
+    const CornerT before = st.corners[size_t(i - 1)];  // (w, nb[i-1], a): edge z+2 runs a -> w
+    const CornerT after = st.corners[size_t(i)];       // (x, a, nb[i+1]): edge z runs x -> a
+    // attributes: the new face (w, a, x) takes colour and quality from the face it borders
+    // across (a, x); texture coordinates are sampled from the old star at the new positions
+    const auto carried = attr_.BeforeSplit(st, after.f, after.f, p + (first - p) * s, p + (lastP - p) * s);
+    x->ImportData(*w);
+    x->ClearS();
+    x->VFp() = nullptr;
+    x->VFi() = 0;
+    journal_.SaveVertex(w);
+    w->P() = p + (first - p) * s;
+    x->P() = p + (lastP - p) * s;
+    std::vector<FaceType*> changed{F};
+    for (int k = i; k < n; ++k) {
+      CornerT c = st.corners[size_t(k)];
+      journal_.SaveFace(c.f);
+      c.f->V(c.z) = x;
+      changed.push_back(c.f);
+    }
+    for (int k = 0; k < i; ++k) changed.push_back(st.corners[size_t(k)].f);
+    F->ImportData(*after.f);
+    F->ClearS();
+    F->V(0) = w;
+    F->V(1) = a;
+    F->V(2) = x;
+    for (int z = 0; z < 3; ++z) {
+      F->VFp(z) = nullptr;
+      F->VFi(z) = 0;
+    }
+    auto link = [&](FaceType* f, int e, FaceType* g, int ge) {
+      journal_.SaveFace(f);
+      journal_.SaveFace(g);
+      f->FFp(e) = g;
+      f->FFi(e) = ge;
+      g->FFp(ge) = f;
+      g->FFi(ge) = e;
+    };
+    link(F, 0, before.f, (before.z + 2) % 3);  // (w, a) ~ (a, w)
+    link(F, 1, after.f, after.z);              // (a, x) ~ (x, a)
+    F->FFp(2) = F;                             // (x, w): the new boundary edge
+    F->FFi(2) = 2;
+    for (FaceType* f : changed) {
+      journal_.SaveFace(f);
+      UpdateNormal(f);
+    }
+    x->VFp() = F;
+    x->VFi() = 2;
+    for (VertexType* q : {w, x, a}) RelinkVF(q);
+    Result geo = CheckGeometry(changed, ref, refArea);
+    if (geo) geo = attr_.AfterSplit(carried, w, x, F, F, changed, geom_);
     if (!geo) {
       RollbackTo(cp);
       return geo;

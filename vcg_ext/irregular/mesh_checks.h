@@ -200,7 +200,10 @@ int CountFoldedEdges(MeshType& m, double maxAngleDeg = 150.0) {
 /// Full consistency check of an edited mesh. O(F + V). Checks, in order:
 /// live faces reference live, distinct vertices; FF symmetric and orientation consistent;
 /// VF lists hold exactly the corners of each vertex; every vertex is a single manifold fan;
-/// interior valence >= 3; no duplicate edge; Gauss-Bonnet identity (eq. 2).
+/// interior valence >= 3; a consistent boundary (every vertex on a boundary edge has exactly
+/// two boundary edges, one leaving and one entering it, and its fan runs from one to the
+/// other; valence >= 2); no duplicate edge; Gauss-Bonnet identity (eq. 2, boundary vertices
+/// counted against 4).
 /// Needs FF and VF adjacency.
 template <class MeshType>
 Result CheckInvariants(MeshType& m) {
@@ -208,6 +211,7 @@ Result CheckInvariants(MeshType& m) {
   typedef typename MeshType::VertexType VertexType;
   std::ostringstream o;
   std::vector<int> corners(m.vert.size(), 0);
+  std::vector<int> borderOut(m.vert.size(), 0), borderIn(m.vert.size(), 0);  // boundary edges leaving / entering
   for (size_t i = 0; i < m.face.size(); ++i) {
     FaceType& f = m.face[i];
     if (f.IsD()) continue;
@@ -234,6 +238,8 @@ Result CheckInvariants(MeshType& m) {
           o << "face " << i << " border edge " << z << " has FFi " << j;
           return Result::Fail(o.str());
         }
+        borderOut[vcg::tri::Index(m, f.V(z))]++;
+        borderIn[vcg::tri::Index(m, f.V((z + 1) % 3))]++;
         continue;
       }
       if (g->FFp(j) != &f || g->FFi(j) != z) {
@@ -273,6 +279,17 @@ Result CheckInvariants(MeshType& m) {
       }
       if (!s.boundary && s.Valence() < 3) {
         o << "vertex " << vi << " has valence " << s.Valence() << " (< 3)";
+        return Result::Fail(o.str());
+      }
+      // Boundary consistency: a single fan (above) from an entering to a leaving boundary edge.
+      const bool onBorder = borderOut[vi] + borderIn[vi] > 0;
+      if (onBorder != s.boundary || (onBorder && (borderOut[vi] != 1 || borderIn[vi] != 1))) {
+        o << "vertex " << vi << " has an inconsistent boundary (" << borderOut[vi] << " boundary edges leaving, "
+          << borderIn[vi] << " entering, fan " << (s.boundary ? "open" : "closed") << ")";
+        return Result::Fail(o.str());
+      }
+      if (s.boundary && s.Valence() < 2) {
+        o << "boundary vertex " << vi << " has valence " << s.Valence() << " (< 2)";
         return Result::Fail(o.str());
       }
       std::vector<VertexType*> nb = s.neighbors;

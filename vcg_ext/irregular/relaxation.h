@@ -14,11 +14,21 @@
 //    original surface. Iterated.
 // Both refuse a vertex move that would turn an incident triangle over (fold), and keep
 // vertices on sharp creases fixed when a feature angle is given.
+//
+// Boundary vertices stay fixed unless RelaxOptions::boundaryCurve is given (a BoundaryCurve
+// made from the original mesh). Then LocalRelax moves each boundary vertex along the boundary:
+// towards the midpoint of its two boundary neighbours, projected onto the original boundary
+// polyline, so the holes keep their shape; a corner (corner angle, the sum of its face angles,
+// differing from 180 degrees by at least RelaxOptions::cornerAngleDeg, default 30: the
+// vertices the boundary valence rule of topology.h gives a regular valence other than 4, and
+// those at exactly 150 degrees) stays fixed. GlobalRelax keeps boundary vertices fixed (they are its boundary conditions).
 #pragma once
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <cmath>
+#include <unordered_map>
 #include <unordered_set>
 #include <vector>
 
@@ -30,6 +40,91 @@
 
 namespace vcg_ext {
 namespace irregular {
+
+/// The boundary polyline of a mesh as it was (its boundary edges), with closest-point queries
+/// through a uniform hash grid of cell size about two boundary edges. O(B) to build; a query
+/// looks at the few cells around the point.
+class BoundaryCurve {
+ public:
+  typedef vcg::Point3d P;
+
+  template <class MeshType>
+  explicit BoundaryCurve(const MeshType& m) {
+    double len = 0;
+    for (auto& f : m.face) {
+      if (f.IsD()) continue;
+      for (int z = 0; z < 3; ++z)
+        if (f.cFFp(z) == &f) {
+          seg_.push_back({P::Construct(f.cP(z)), P::Construct(f.cP((z + 1) % 3))});
+          len += (seg_.back().b - seg_.back().a).Norm();
+        }
+    }
+    cell_ = seg_.empty() ? 1.0 : std::max(1e-12, 2.0 * len / double(seg_.size()));
+    for (size_t i = 0; i < seg_.size(); ++i) {
+      const Key lo = KeyOf(seg_[i].a), hi = KeyOf(seg_[i].b);
+      for (long x = std::min(lo.x, hi.x); x <= std::max(lo.x, hi.x); ++x)
+        for (long y = std::min(lo.y, hi.y); y <= std::max(lo.y, hi.y); ++y)
+          for (long z = std::min(lo.z, hi.z); z <= std::max(lo.z, hi.z); ++z) grid_[Hash(Key{x, y, z})].push_back(i);
+    }
+  }
+
+  bool Empty() const { return seg_.empty(); }
+  size_t Segments() const { return seg_.size(); }
+
+  /// Closest point of the original boundary polyline to p (p itself if the mesh had none).
+  template <class Coord>
+  Coord Closest(const Coord& p, double* dist = nullptr) const {
+    const P q = P::Construct(p);
+    double best = std::numeric_limits<double>::max();
+    P bestP = q;
+    const Key k = KeyOf(q);
+    for (long r = 1; r <= 64 && best == std::numeric_limits<double>::max(); r *= 2) {
+      for (long x = k.x - r; x <= k.x + r; ++x)
+        for (long y = k.y - r; y <= k.y + r; ++y)
+          for (long z = k.z - r; z <= k.z + r; ++z) {
+            auto it = grid_.find(Hash(Key{x, y, z}));
+            if (it == grid_.end()) continue;
+            for (size_t i : it->second) {
+              const P c = OnSegment(seg_[i], q);
+              const double d = (c - q).SquaredNorm();
+              if (d < best) best = d, bestP = c;
+            }
+          }
+    }
+    if (best == std::numeric_limits<double>::max())  // far from every cell: look at all
+      for (auto& s : seg_) {
+        const P c = OnSegment(s, q);
+        const double d = (c - q).SquaredNorm();
+        if (d < best) best = d, bestP = c;
+      }
+    if (dist) *dist = seg_.empty() ? 0 : std::sqrt(best);
+    return Coord::Construct(bestP);
+  }
+
+ private:
+  struct Seg {
+    P a, b;
+  };
+  struct Key {
+    long x, y, z;
+  };
+  Key KeyOf(const P& p) const {
+    return Key{long(std::floor(p[0] / cell_)), long(std::floor(p[1] / cell_)), long(std::floor(p[2] / cell_))};
+  }
+  static size_t Hash(const Key& k) {
+    return size_t(k.x) * 73856093u ^ size_t(k.y) * 19349663u ^ size_t(k.z) * 83492791u;
+  }
+  static P OnSegment(const Seg& s, const P& q) {
+    const P d = s.b - s.a;
+    const double l2 = d.SquaredNorm();
+    double t = l2 > 0 ? (q - s.a).dot(d) / l2 : 0;
+    t = std::max(0.0, std::min(1.0, t));
+    return s.a + d * t;
+  }
+  std::vector<Seg> seg_;
+  std::unordered_map<size_t, std::vector<size_t>> grid_;  // hash collisions only add candidates
+  double cell_ = 1;
+};
 
 enum class RelaxMode { Local = 0, Global = 1 };
 enum class RelaxSolver { ConjugateGradient = 0, SparseLDLT = 1 };
@@ -48,6 +143,8 @@ struct RelaxOptions {
   double solverTolerance = 1e-6;  ///< global, conjugate gradients: relative residual
   int solverMaxIterations = 300;  ///< global, conjugate gradients
   double damping = 1.0;           ///< global: share of the solved displacement applied per round
+  const BoundaryCurve* boundaryCurve = nullptr;  ///< local: if set, boundary vertices slide along it (header)
+  double cornerAngleDeg = 30;     ///< local, with boundaryCurve: |corner angle - 180| >= this stays fixed
 };
 
 struct RelaxReport {
@@ -176,7 +273,25 @@ RelaxReport LocalRelax(MeshType& m, const std::vector<int>& region, const Surfac
       if (!relax_detail::Movable(m, v, creaseIn)) continue;
       auto* vp = &m.vert[size_t(v)];
       VertexStar<MeshType> st = StarOf<MeshType>(vp);
-      if (st.boundary || st.neighbors.empty()) continue;
+      if (st.neighbors.empty()) continue;
+      if (st.boundary) {
+        if (!opt.boundaryCurve || opt.boundaryCurve->Empty() ||
+            std::abs(CornerAngleDeg(st) - 180.0) >= opt.cornerAngleDeg)
+          continue;  // fixed: no curve to slide on, or a corner
+        if (it == 0) ++rep.vertices;
+        // Along the boundary: towards the midpoint of the two boundary neighbours, onto the
+        // original boundary polyline.
+        const CoordType mid = (st.neighbors.front()->P() + st.neighbors.back()->P()) / ScalarType(2);
+        CoordType p = vp->P() + (mid - vp->P()) * ScalarType(opt.step);
+        p = opt.boundaryCurve->Closest(p);
+        if (relax_detail::MoveHurts<MeshType>(st, vp, p, opt.minFaceTurnCos)) {
+          ++rep.rejected;
+          continue;
+        }
+        vp->P() = p;
+        ++rep.moved;
+        continue;
+      }
       if (it == 0) ++rep.vertices;
       CoordType c(0, 0, 0);
       for (auto n : st.neighbors) c += n->P();

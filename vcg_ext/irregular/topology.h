@@ -6,6 +6,12 @@
 //
 //     sum_{interior v} (6 - valence(v)) + sum_{boundary v} (4 - valence(v)) = 6 * chi
 //
+// eq. 2 is the invariant every edit keeps; it counts every boundary vertex against 4.
+// Which vertices are *irregular* on a boundary follows the boundary valence rule
+// (RegularBoundaryValence below): regular valence round(corner angle / 60) + 1, so 4 on a
+// smooth stretch and 3 at a 120 degree corner. The two agree on a smooth boundary; at a corner
+// eq. 2 sees a defect that the corner's shape, not an irregular vertex, accounts for.
+//
 // Preconditions: the mesh is a vcg triangle mesh with FF adjacency up to date. Functions that
 // start from a single vertex (VertexStar, Valence) also need VF adjacency.
 // Orientation: vcg faces are counter-clockwise (CCW) seen from outside; "CCW around v" below
@@ -13,6 +19,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <string>
 #include <vector>
@@ -129,12 +136,60 @@ int Valence(typename MeshType::VertexType* v) {
   return StarOf<MeshType>(v).Valence();
 }
 
-/// The valence a vertex must have to be regular: 6 inside, 4 on the boundary (paper sec. 4).
+/// The valence eq. 2 counts a vertex against: 6 inside, 4 on the boundary (paper sec. 4).
+/// This is the Gauss-Bonnet bookkeeping valence; for "is this boundary vertex irregular" use
+/// the boundary valence rule (RegularBoundaryValence), which also looks at the corner angle.
 inline int RegularValence(bool boundary) { return boundary ? 4 : 6; }
 
-/// Valence of the interior vertex with the same curvature defect (boundary valence + 2);
-/// the colour legend and "select valence N" use it, so a boundary vertex of valence 3 counts
-/// as a v5.
+/// The boundary valence rule. A boundary vertex whose incident faces span the corner angle
+/// `cornerAngleDeg` (the sum of its face angles, degrees) is regular when its faces are
+/// equilateral-like, i.e. when it has angle / 60 faces: valence round(angle / 60) + 1, at
+/// least 2 (one face). So: 4 on a smooth stretch (angle in [150, 210)), 3 at a 120 degree
+/// corner, 2 at 60, 5 at 240. Rounding is half away from zero (std::lround), so a boundary
+/// vertex is a *corner* (IsBoundaryCorner) exactly when its angle is below 150 or at least 210
+/// degrees, i.e. |angle - 180| >= 30 but for an angle of exactly 150.
+inline int RegularBoundaryValence(double cornerAngleDeg) {
+  if (!(cornerAngleDeg > 0)) return 4;  // no faces / not a number: treat as a smooth stretch
+  return std::max(2, int(std::lround(cornerAngleDeg / 60.0)) + 1);
+}
+
+/// A boundary vertex whose regular valence differs from the smooth-stretch 4 (see above).
+inline bool IsBoundaryCorner(double cornerAngleDeg) { return RegularBoundaryValence(cornerAngleDeg) != 4; }
+
+/// Angle (degrees) of face f at its corner z, computed in double.
+template <class FaceType>
+double FaceAngleDeg(const FaceType* f, int z) {
+  const auto& p = f->cP(z);
+  const auto& q = f->cP((z + 1) % 3);
+  const auto& r = f->cP((z + 2) % 3);
+  const double a[3] = {double(q[0]) - double(p[0]), double(q[1]) - double(p[1]), double(q[2]) - double(p[2])};
+  const double b[3] = {double(r[0]) - double(p[0]), double(r[1]) - double(p[1]), double(r[2]) - double(p[2])};
+  const double c[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+  const double sn = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+  const double cs = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+  return std::atan2(sn, cs) * 180.0 / M_PI;
+}
+
+/// Corner angle of a vertex: the sum of the angles of its incident faces at it (degrees).
+template <class MeshType>
+double CornerAngleDeg(const VertexStar<MeshType>& s) {
+  double sum = 0;
+  for (auto& c : s.corners) sum += FaceAngleDeg(c.f, c.z);
+  return sum;
+}
+
+/// The regular valence of a vertex: 6 inside; on the boundary, the boundary valence rule.
+template <class MeshType>
+int RegularValenceOf(const VertexStar<MeshType>& s) {
+  return s.boundary ? RegularBoundaryValence(CornerAngleDeg(s)) : 6;
+}
+
+/// Valence of the interior vertex with the same irregularity: valence + 6 - regular valence,
+/// so a boundary vertex of valence 3 on a smooth stretch counts as a v5 and one of valence 3
+/// at a 120 degree corner as a v6. The colour legend and "select valence N" use it.
+inline int EquivalentValence(int valence, int regularValence) { return valence + 6 - regularValence; }
+
+/// Old form: a boundary vertex counted as if on a smooth stretch (valence + 2).
 inline int EquivalentValence(int valence, bool boundary) { return boundary ? valence + 2 : valence; }
 
 /// Per-vertex valence and boundary flag for the whole mesh, from FF only. O(F).
@@ -143,11 +198,13 @@ struct ValenceField {
   std::vector<int> valence;       ///< indexed like m.vert; 0 for deleted or unreferenced vertices
   std::vector<char> boundary;     ///< 1 if the vertex lies on a boundary edge
   std::vector<char> referenced;   ///< 1 if some live face references the vertex
+  std::vector<int> regular;       ///< regular valence: 6 inside, the boundary valence rule on the boundary
 
-  bool IsIrregular(size_t i) const {
-    return referenced[i] && valence[i] != RegularValence(boundary[i]);
-  }
-  int Equivalent(size_t i) const { return EquivalentValence(valence[i], boundary[i]); }
+  /// Irregular by the boundary valence rule (interior: valence != 6).
+  bool IsIrregular(size_t i) const { return referenced[i] && valence[i] != regular[i]; }
+  /// A boundary vertex at a corner (regular valence != 4).
+  bool IsCorner(size_t i) const { return referenced[i] && boundary[i] && regular[i] != 4; }
+  int Equivalent(size_t i) const { return EquivalentValence(valence[i], regular[i]); }
 };
 
 template <class MeshType>
@@ -175,6 +232,18 @@ ValenceField<MeshType> ComputeValences(MeshType& m) {
     vf.boundary[i] = borderEdges[i] > 0;
     vf.valence[i] += borderEdges[i] / 2;
   }
+  // The boundary valence rule needs the corner angle of the boundary vertices.
+  std::vector<double> angle(n, 0.0);
+  for (auto fi = m.face.begin(); fi != m.face.end(); ++fi) {
+    if (fi->IsD()) continue;
+    for (int z = 0; z < 3; ++z) {
+      size_t i = vcg::tri::Index(m, fi->V(z));
+      if (vf.boundary[i]) angle[i] += FaceAngleDeg(&*fi, z);
+    }
+  }
+  vf.regular.assign(n, 6);
+  for (size_t i = 0; i < n; ++i)
+    if (vf.boundary[i]) vf.regular[i] = RegularBoundaryValence(angle[i]);
   return vf;
 }
 
@@ -188,10 +257,13 @@ struct TopologySummary {
   int components = 0;
   int eulerCharacteristic = 0;
   int genus = 0;          ///< total genus over components (orientable surfaces)
-  int irregular = 0;
-  int gaussBonnetSum = 0;  ///< sum of (regular valence - valence) over vertices
+  int irregular = 0;          ///< interior valence != 6, boundary by the boundary valence rule
+  int boundaryIrregular = 0;  ///< the boundary vertices among `irregular`
+  int boundaryCorners = 0;    ///< boundary vertices at a corner (regular valence != 4)
+  int gaussBonnetSum = 0;  ///< eq. 2: sum of (6 - valence) inside and (4 - valence) on the boundary
   std::map<int, int> histogram;          ///< valence -> count, interior vertices
   std::map<int, int> boundaryHistogram;  ///< valence -> count, boundary vertices
+  std::map<int, int> equivalentHistogram;  ///< equivalent valence (EquivalentValence) -> count, all vertices
   bool GaussBonnetHolds() const { return gaussBonnetSum == 6 * eulerCharacteristic; }
 };
 
@@ -259,7 +331,12 @@ TopologySummary Summarize(MeshType& m) {
       s.boundaryHistogram[vf.valence[i]]++;
     else
       s.histogram[vf.valence[i]]++;
-    if (vf.IsIrregular(i)) ++s.irregular;
+    s.equivalentHistogram[vf.Equivalent(i)]++;
+    if (vf.IsIrregular(i)) {
+      ++s.irregular;
+      if (vf.boundary[i]) ++s.boundaryIrregular;
+    }
+    if (vf.IsCorner(i)) ++s.boundaryCorners;
     s.gaussBonnetSum += RegularValence(vf.boundary[i]) - vf.valence[i];
   }
   for (auto fi = m.face.begin(); fi != m.face.end(); ++fi) {

@@ -56,6 +56,7 @@
 #include <vector>
 
 #include "graph_ops.h"
+#include "graph_step.h"
 
 namespace vcg_ext {
 namespace irregular {
@@ -70,27 +71,6 @@ std::string Text(const Args&... args) {
 }
 }  // namespace type_change_detail
 
-/// One graph operation of a plan (sec. 6.1).
-struct GraphStep {
-  enum Kind { kCollapse, kSplit, kFlip };
-  Kind kind = kSplit;
-  int a = -1, b = -1, c = -1;  ///< Collapse(a -> b): a deleted, b survives; Split(a; b, c): a keeps b..c CCW;
-                               ///< Flip(a, b)
-  int created = -1;            ///< Split: the new vertex (index m.vert.size() at that time)
-  std::string Describe() const {
-    std::ostringstream o;
-    if (kind == kCollapse)
-      o << "collapse vertex " << a << " into " << b;
-    else if (kind == kFlip)
-      o << "flip edge (" << a << ", " << b << ")";
-    else
-      o << "split vertex " << a << " along (" << a << ", " << b << "), (" << a << ", " << c << "): new vertex " << created;
-    return o.str();
-  }
-  bool operator==(const GraphStep& o) const {
-    return kind == o.kind && a == o.a && b == o.b && c == o.c && created == o.created;
-  }
-};
 
 /// What a type split or aggregation does (or would do).
 struct TypeChangeOutcome {
@@ -377,7 +357,7 @@ class TypeChange {
     std::sort(o.produced.begin(), o.produced.end());
     for (auto& st : o.steps)
       if (st.kind == GraphStep::kSplit) o.created.push_back(st.created);
-      else if (st.kind == GraphStep::kCollapse) o.deleted.push_back(st.a);
+      else if (st.kind == GraphStep::kCollapse) o.deleted.push_back(st.x);
     o.status = Result::Ok();
   }
 
@@ -481,10 +461,10 @@ class TypeChange {
     for (auto& e : ends) {
       GraphStep st;
       st.kind = GraphStep::kSplit;
-      st.a = v;
-      st.b = r[size_t(e.first)];
-      st.c = r[size_t(e.second)];
-      st.created = s.Split(v, st.b, st.c);
+      st.x = v;
+      st.y = r[size_t(e.first)];
+      st.z = r[size_t(e.second)];
+      st.created = s.Split(v, st.y, st.z);
       o.steps.push_back(st);
     }
     o.resultVertex = v;
@@ -518,8 +498,8 @@ class TypeChange {
     if (!can) return refuse(can.reason);
     GraphStep st;
     st.kind = GraphStep::kCollapse;
-    st.a = r[0];
-    st.b = v;
+    st.x = r[0];
+    st.y = v;
     s.Collapse(r[0], v);
     o.steps.push_back(st);
     o.resultVertex = v;
@@ -547,8 +527,8 @@ class TypeChange {
     if (!can) return refuse(can.reason);
     GraphStep st;
     st.kind = GraphStep::kFlip;
-    st.a = v;
-    st.b = r[0];
+    st.x = v;
+    st.y = r[0];
     s.Flip(v, r[0]);
     o.steps.push_back(st);
     o.resultVertex = v;
@@ -622,13 +602,13 @@ class TypeChange {
       return Refusal(Str("vertex ", at, " cannot become the v", 8 - int(g.size()), " of these v5s; vertex ", cand[0], " can"));
     GraphStep st;
     st.kind = GraphStep::kSplit;
-    st.a = cand[pick];
-    st.b = along[pick].first;
-    st.c = along[pick].second;
-    st.created = s.Split(st.a, st.b, st.c);
+    st.x = cand[pick];
+    st.y = along[pick].first;
+    st.z = along[pick].second;
+    st.created = s.Split(st.x, st.y, st.z);
     TypeChangeOutcome o;
     o.steps.push_back(st);
-    o.resultVertex = st.a;
+    o.resultVertex = st.x;
     Close(o, s, false);
     return o;
   }
@@ -662,8 +642,8 @@ class TypeChange {
           st.left.erase(o[1]);
           GraphStep c;
           c.kind = GraphStep::kCollapse;
-          c.a = u;
-          c.b = st.r;
+          c.x = u;
+          c.y = st.r;
           st.steps.push_back(c);
           starts.push_back({st, (x == at || y == at) ? 0 : g.size() % 2 == 0 ? 1 : 2});
         }
@@ -688,9 +668,9 @@ class TypeChange {
       Scratch s(ed_);
       bool ok = true;
       for (auto& st : sp.first.steps) {
-        Result can = s.CanCollapse(st.a, st.b);
+        Result can = s.CanCollapse(st.x, st.y);
         if (!can) ok = false;
-        else s.Collapse(st.a, st.b);
+        else s.Collapse(st.x, st.y);
       }
       if (!ok) continue;
       MergeState done;
@@ -698,7 +678,7 @@ class TypeChange {
         Scratch fin(ed_);
         TypeChangeOutcome o;
         for (auto st : done.steps) {
-          fin.Collapse(st.a, st.b);
+          fin.Collapse(st.x, st.y);
           o.steps.push_back(st);
         }
         o.resultVertex = done.r;
@@ -741,8 +721,8 @@ class TypeChange {
       for (int y : {o[0], o[1], x}) ns.left.erase(y);
       GraphStep c;
       c.kind = GraphStep::kCollapse;
-      c.a = x;
-      c.b = st.r;
+      c.x = x;
+      c.y = st.r;
       ns.steps.push_back(c);
       if (Search(next, ns, group, done, best, bestLeft)) return true;
     }
@@ -779,20 +759,20 @@ class TypeChange {
       std::vector<int> around;
       if (st.kind == GraphStep::kFlip) {
         int o[2] = {-1, -1};
-        ed_.Opposites(st.a, st.b, o);
-        r = ed_.Flip(st.a, st.b);
-        around = {st.a, st.b, o[0], o[1]};
+        ed_.Opposites(st.x, st.y, o);
+        r = ed_.Flip(st.x, st.y);
+        around = {st.x, st.y, o[0], o[1]};
       } else if (st.kind == GraphStep::kCollapse) {
         int o[2] = {-1, -1};
-        ed_.Opposites(st.a, st.b, o);
-        r = ed_.Collapse(st.a, st.b);
-        around = {st.b, o[0], o[1]};
+        ed_.Opposites(st.x, st.y, o);
+        r = ed_.Collapse(st.x, st.y);
+        around = {st.y, o[0], o[1]};
       } else {
         int created = -1;
-        r = ed_.Split(st.a, st.b, st.c, &created);
+        r = ed_.Split(st.x, st.y, st.z, &created);
         if (r && created != st.created)
           return Result::Fail(Str("internal error: the split created vertex ", created, ", the plan said ", st.created));
-        around = {st.a, created, st.b, st.c};
+        around = {st.x, created, st.y, st.z};
       }
       if (!r) return Result::Fail(Str(st.Describe(), ": ", r.reason));
       if (hook) hook(st.Describe(), around);

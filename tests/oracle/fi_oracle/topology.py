@@ -15,7 +15,7 @@ __all__ = [
     "genus", "is_edge_manifold", "fan_counts", "is_vertex_manifold", "is_consistently_oriented", "irregular_mask",
     "gauss_bonnet_sum", "check_invariants", "summary", "counts", "histogram", "one_ring", "neighbour_from",
     "adjacent", "hop_distances", "adjacency_lists", "opposite_vertices", "degenerate_face_mask",
-    "duplicate_vertex_mask",
+    "duplicate_vertex_mask", "corner_angles", "regular_boundary_valence", "regular_valences", "corner_mask",
 ]
 
 
@@ -85,10 +85,46 @@ def boundary_vertex_mask(mesh):
 boundary_mask = boundary_vertex_mask  # short alias
 
 
-def equivalent_valences(mesh):
-    """Interior valence, or boundary valence + 2 (the plugin's legend and its v3..v9 counts)."""
+def corner_angles(mesh):
+    """Sum of the face angles at every vertex, in degrees (atan2 of |a x b| and a . b)."""
     m = as_mesh(mesh)
-    return np.where(boundary_vertex_mask(m), valences(m) + 2, valences(m))
+    f = m.faces
+    out = np.zeros(len(m.vertices))
+    if len(f) == 0:
+        return out
+    p = m.vertices[f]
+    for z in range(3):
+        a = p[:, (z + 1) % 3] - p[:, z]
+        b = p[:, (z + 2) % 3] - p[:, z]
+        ang = np.degrees(np.arctan2(np.linalg.norm(np.cross(a, b), axis=1), (a * b).sum(axis=1)))
+        np.add.at(out, f[:, z], ang)
+    return out
+
+
+def regular_boundary_valence(angle_deg):
+    """The boundary valence rule: round(angle / 60) + 1 (half away from zero), at least 2."""
+    a = np.asarray(angle_deg, dtype=np.float64)
+    r = np.floor(a / 60.0 + 0.5).astype(np.int64) + 1  # angles are positive: half away from zero
+    return np.maximum(r, 2)
+
+
+def regular_valences(mesh):
+    """6 inside; on the boundary the valence rule of the corner angle."""
+    m = as_mesh(mesh)
+    return np.where(boundary_vertex_mask(m), regular_boundary_valence(corner_angles(m)), 6)
+
+
+def corner_mask(mesh):
+    """Boundary vertices whose regular valence is not 4 (corner angle below 150 or at least 210)."""
+    m = as_mesh(mesh)
+    return referenced_mask(m) & boundary_vertex_mask(m) & (regular_valences(m) != 4)
+
+
+def equivalent_valences(mesh):
+    """valence + 6 - regular valence: interior valence, boundary valence + 2 on a smooth stretch
+    (the plugin's legend and its v3..v9 counts)."""
+    m = as_mesh(mesh)
+    return valences(m) + 6 - regular_valences(m)
 
 
 def euler_characteristic(mesh):
@@ -187,10 +223,10 @@ def is_consistently_oriented(mesh):
 
 
 def irregular_mask(mesh):
-    """Referenced vertices with valence != 6 (interior) or != 4 (boundary)."""
+    """Referenced vertices with valence != 6 (interior) or != the boundary valence rule's
+    round(corner angle / 60) + 1 (boundary: 4 on a smooth stretch)."""
     m = as_mesh(mesh)
-    regular = np.where(boundary_vertex_mask(m), 4, 6)
-    return referenced_mask(m) & (valences(m) != regular)
+    return referenced_mask(m) & (valences(m) != regular_valences(m))
 
 
 def gauss_bonnet_sum(mesh):
@@ -236,14 +272,16 @@ def histogram(values):
 
 def counts(mesh, suffix=""):
     """The counts the editing filters return with a suffix ("_before", "_after"): irregular,
-    v3 (equivalent valence 3 or less), v4, v5, v7, v8, v9 (9 or more), valence_histogram
+    boundary_irregular, v3 (equivalent valence 3 or less), v4, v5, v7, v8, v9 (9 or more), valence_histogram
     (interior vertices by valence)."""
     m = as_mesh(mesh)
     ref = referenced_mask(m)
     bnd = boundary_vertex_mask(m)
     val = valences(m)
-    eq = np.where(bnd, val + 2, val)[ref]
-    out = {"irregular": int(irregular_mask(m).sum()), "v3": int((eq <= 3).sum()), "v4": int((eq == 4).sum()),
+    eq = equivalent_valences(m)[ref]
+    irr = irregular_mask(m)
+    out = {"irregular": int(irr.sum()), "boundary_irregular": int((irr & bnd).sum()),
+           "v3": int((eq <= 3).sum()), "v4": int((eq == 4).sum()),
            "v5": int((eq == 5).sum()), "v7": int((eq == 7).sum()), "v8": int((eq == 8).sum()),
            "v9": int((eq >= 9).sum()), "valence_histogram": histogram(val[ref & ~bnd])}
     return {k + suffix: v for k, v in out.items()}
@@ -260,6 +298,7 @@ def summary(mesh):
     out.update(counts(m))
     out["irregular_percent"] = 100.0 * out["irregular"] / max(out["vertices"], 1)
     out["boundary_valence_histogram"] = histogram(valences(m)[ref & bnd])
+    out["boundary_corners"] = int(corner_mask(m).sum())
     out["euler_characteristic"] = euler_characteristic(m)
     out["boundary_loops"] = boundary_loop_count(m)
     out["components"] = component_count(m)
