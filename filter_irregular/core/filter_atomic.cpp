@@ -58,7 +58,11 @@ FilterOutcome ApplyAtomic(FilterContext& ctx, const ParamValues& par) {
   std::vector<int> sel = SelectedVertices(m);
   const irr::TopologySummary before = SummaryOf(m);
   std::unique_ptr<irr::SurfaceProjector> projector;
-  if (relax) projector.reset(new irr::SurfaceProjector(m));
+  std::unique_ptr<irr::BoundaryCurve> boundary;  // boundary vertices slide along the boundary as it was
+  if (relax) {
+    projector.reset(new irr::SurfaceProjector(m));
+    boundary.reset(new irr::BoundaryCurve(m));
+  }
   irr::MeshEditor<CMeshO> ed(m);
   irr::AtomicOperations<CMeshO> ops(ed);
   auto valences = [&](const std::vector<int>& vs) {
@@ -168,7 +172,7 @@ FilterOutcome ApplyAtomic(FilterContext& ctx, const ParamValues& par) {
     }
     if (created >= 0) out.changes[created] = ed.Valence(created);
     for (auto& kv : out.changes)
-      if (kv.second > 0 && kv.second != (ed.IsBoundary(kv.first) ? 4 : 6)) out.irregular.push_back(kv.first);
+      if (kv.second > 0 && kv.second != irr::RegularValenceOf(ed.Star(kv.first))) out.irregular.push_back(kv.first);
   }
   // Re-select what the operation produced (irregular vertices it reports, or the touched ones).
   std::vector<int> keep = out.irregular;
@@ -183,11 +187,7 @@ FilterOutcome ApplyAtomic(FilterContext& ctx, const ParamValues& par) {
     std::vector<int> seeds;
     for (auto& kv : out.changes)
       if (ed.IsLive(kv.first)) seeds.push_back(kv.first);
-    irr::RelaxOptions ro;
-    ro.iterations = 5;
-    const std::vector<int> ring = irr::KRing(m, seeds, 2);
-    relaxed = int(ring.size());
-    irr::LocalRelax(m, ring, projector.get(), ro);
+    relaxed = RelaxAroundEdit(m, seeds, projector.get(), boundary.get());
   }
   std::string changes;
   for (auto& kv : out.changes) changes += Format(" %d:%d", kv.first, kv.second);

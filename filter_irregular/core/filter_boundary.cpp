@@ -73,12 +73,7 @@ FilterOutcome ApplyBoundary(FilterContext& ctx, const ParamValues& par) {
     if (st.Valence() != irr::RegularValenceOf(st)) m.vert[size_t(v)].SetS();
   }
   if (relax && !touched.empty()) {
-    irr::RelaxOptions ro;
-    ro.iterations = 5;
-    ro.boundaryCurve = curve.get();
-    const std::vector<int> ring = irr::KRing(m, touched, 2);
-    relaxed = int(ring.size());
-    irr::LocalRelax(m, ring, projector.get(), ro);
+    relaxed = RelaxAroundEdit(m, touched, projector.get(), curve.get());
   }
   FinishEdit(m);
   ctx.Logf("Boundary operation: %s", out.description.c_str());

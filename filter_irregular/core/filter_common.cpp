@@ -9,7 +9,9 @@
 
 #include <vcg_ext/irregular/legend.h>
 #include <vcg_ext/irregular/mesh_checks.h>
+#include <vcg_ext/irregular/attribute_transfer.h>
 #include <vcg_ext/irregular/quality.h>
+#include <vcg_ext/irregular/relaxation.h>
 
 namespace irr = vcg_ext::irregular;
 
@@ -104,6 +106,22 @@ void LogShape(FilterContext& ctx, const char* when, CMeshO& m) {
   irr::ShapeMeasures s = irr::MeasureShape(m);
   ctx.Logf("%s: min angle %.2f deg, mean min angle %.2f deg, %.2f%% of triangles under 30 deg, edge length spread %.3f",
            when, s.minAngleDeg, s.meanMinAngleDeg, 100.0 * s.shareBelow30, s.edgeLengthSpread);
+}
+
+int RelaxAroundEdit(CMeshO& m, const std::vector<int>& seeds, const irr::SurfaceProjector* original,
+                    const irr::BoundaryCurve* boundary, int iterations) {
+  std::vector<int> live;
+  for (int v : seeds)
+    if (v >= 0 && size_t(v) < m.vert.size() && !m.vert[size_t(v)].IsD()) live.push_back(v);
+  if (live.empty()) return 0;
+  irr::RelaxOptions ro;
+  ro.iterations = iterations;
+  ro.boundaryCurve = boundary;
+  const std::vector<int> ring = irr::KRing(m, live, 2);
+  irr::AttributeResampler<CMeshO> texture(m, ring);  // the texture stays where it was on the surface
+  irr::LocalRelax(m, ring, original, ro);
+  texture.Resample();
+  return int(ring.size());
 }
 
 }  // namespace filter_irregular

@@ -10,6 +10,13 @@
 
 #include <vcg_ext/irregular/topology.h>
 
+namespace vcg_ext {
+namespace irregular {
+class SurfaceProjector;
+class BoundaryCurve;
+}  // namespace irregular
+}  // namespace vcg_ext
+
 namespace filter_irregular {
 
 /// Indices of the selected live vertices, ascending.
@@ -46,5 +53,12 @@ std::string HistogramText(const std::map<int, int>& h);
 
 /// The shape measures line ("Before: min angle ...").
 void LogShape(FilterContext& ctx, const char* when, CMeshO& m);
+
+/// Local relaxation (sec. 8) of the 2-ring around `seeds` after an edit, `iterations` sweeps:
+/// projected onto `original` (may be null), boundary vertices sliding along `boundary` (may be
+/// null: they stay fixed), texture coordinates re-sampled where the vertices moved to
+/// (attribute_transfer.h). Returns the number of vertices in the ring. O(ring).
+int RelaxAroundEdit(CMeshO& m, const std::vector<int>& seeds, const vcg_ext::irregular::SurfaceProjector* original,
+                    const vcg_ext::irregular::BoundaryCurve* boundary, int iterations = 5);
 
 }  // namespace filter_irregular

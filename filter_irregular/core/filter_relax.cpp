@@ -8,6 +8,7 @@
 #include <vcg/complex/algorithms/update/bounding.h>
 #include <vcg/complex/algorithms/update/normal.h>
 
+#include <vcg_ext/irregular/attribute_transfer.h>
 #include <vcg_ext/irregular/quality.h>
 #include <vcg_ext/irregular/relaxation.h>
 
@@ -47,6 +48,9 @@ FilterOutcome ApplyRelax(FilterContext& ctx, const ParamValues& par) {
     for (size_t i = 0; i < m.vert.size(); ++i)
       if (!m.vert[i].IsD()) region.push_back(int(i));
   irr::SurfaceProjector original(m);
+  // Local relaxation slides boundary vertices along the boundary as it was (corners stay).
+  irr::BoundaryCurve boundary(m);
+  ro.boundaryCurve = &boundary;
   std::vector<char> crease = irr::CreaseVertices(m, ro.featureAngleDeg);
   const irr::ShapeMeasures before = irr::MeasureShape(m);
   LogShape(ctx, "Before", m);
@@ -57,7 +61,10 @@ FilterOutcome ApplyRelax(FilterContext& ctx, const ParamValues& par) {
   auto cb = ctx.Progress();
   for (int it = 0; it < ro.iterations; ++it) {
     if (cb) cb(100 * it / std::max(1, ro.iterations), "Relaxing...");
+    // per sweep, so that no vertex leaves the star its texture coordinates are sampled from
+    irr::AttributeResampler<CMeshO> texture(m, region);
     irr::RelaxReport r = irr::Relax(m, region, ro.reproject ? &original : nullptr, one, &crease);
+    texture.Resample();
     total.vertices = r.vertices;
     total.moved += r.moved;
     total.rejected += r.rejected;
