@@ -42,9 +42,18 @@ struct CompositeOptions {
 
 struct CompositeOutcome {
   Result result = Result::Fail("not applied");
-  std::vector<int> irregular;  ///< the irregular vertices the operation leaves
+  std::vector<int> irregular;  ///< the irregular vertices the operation leaves (every caller's
+                               ///< list; the named fields below say which is which)
   int atomicSteps = 0;         ///< atomic operations applied
   std::string log;             ///< one line per step
+  // Named results (-1 when the operation does not produce them):
+  int lead = -1;      ///< pair movement: where the lead vertex ended
+  int partner = -1;   ///< pair movement: where the partner ended
+  int survivor = -1;  ///< triple cancellation: the vertex left (a v5 for 5-5-7, a v7 for 5-7-7);
+                      ///< triple generation: the moved v5 / v7
+  int pair5 = -1, pair7 = -1;  ///< generation: the generated 5-7 pair (triple), or the pair that
+                               ///< moved away (quadruple)
+  int other5 = -1, other7 = -1;  ///< quadruple generation: the pair that stayed
   explicit operator bool() const { return result.ok; }
 };
 
@@ -237,9 +246,20 @@ class CompositeOperations {
   }
 
   /// Moves a pair (5-7, 5-5 or 7-7; adjacent or not) one step per repetition with the
-  /// pipeline of sec. 7.1.1: `lead` moves one step toward its neighbour k (counted from the
+  /// pipeline of sec. 7.1.1: `lead` moves one step onto its neighbour k (counted from the
   /// neighbour of smallest index) generating a 5-7 pair, the pair is transported to
   /// `partner` and cancelled there, moving the partner one step.
+  /// Which step the partner makes is chosen, among the cancellations the triple admits (and
+  /// the two readings of the lead's flip, fig. 7), so that
+  ///  * a 5-7 pair translates (sec. 7.1.1: "the relative position of the two vertices remains
+  ///    the same"): the connecting path from the lead to the partner keeps its two segment
+  ///    lengths and its turn, and the partner steps the way the lead stepped;
+  ///  * a 5-5 or 7-7 pair moves symmetrically (sec. 7.1.2: Δd1 = Δd3, Δd2 = Δd4): the partner
+  ///    makes the mirrored step, opposite to the lead's.
+  /// The step direction is compared on the surface (the two displacement vectors, at most a
+  /// few edges of parallel transport apart on the connecting path). Refused, with the mesh
+  /// unchanged, when no choice realises the translation of a 5-7 pair.
+  /// out.lead / out.partner: where the two vertices ended. O(steps * L).
   CompositeOutcome MovePair(int lead, int partner, int k, int steps) {
     CompositeOutcome out;
     auto cp = ed_.Mark();
@@ -250,27 +270,18 @@ class CompositeOperations {
       return Fail(out, cp, "pair movement works on v5 and v7 (reduce other valences first with 'Reduce to Valence 5 and 7')");
     if (dl != dp && ed_.Adjacent(lead, partner)) {
       const int v5 = dl == 5 ? lead : partner, v7 = dl == 5 ? partner : lead;
-      return MoveAdjacentPair57(v5, v7, ((k % 6) + 6) % 6, steps);
+      out = MoveAdjacentPair57(v5, v7, ((k % 6) + 6) % 6, steps);
+      if (out) out.lead = dl == 5 ? out.irregular[0] : out.irregular[1], out.partner = dl == 5 ? out.irregular[1] : out.irregular[0];
+      return out;
     }
     for (int s = 0; s < steps; ++s) {
       Progress(100 * s / std::max(1, steps), "Moving the pair");
-      // (1) the lead moves one step and generates an adjacent 5-7 pair
-      AtomicOutcome g = ops_.MoveWithPairGeneration(lead, ((k % ed_.Valence(lead)) + ed_.Valence(lead)) % ed_.Valence(lead));
-      if (!g) return Fail(out, cp, Str("step ", s + 1, ": the lead vertex cannot move that way: ", g.result.reason));
-      ++out.atomicSteps;
-      Step(out, g.description, g.irregular);
-      const int movedLead = g.irregular[0];
-      int p5 = -1, p7 = -1;
-      for (size_t i = 1; i < g.irregular.size(); ++i)
-        (ed_.Valence(g.irregular[i]) == 5 ? p5 : p7) = g.irregular[i];
-      // (2)+(3) transport the generated pair to the partner and cancel the triple there
-      int newPartner = -1;
-      Result t = TransportAndCancel(out, p5, p7, partner, &newPartner);
-      if (!t) return Fail(out, cp, Str("step ", s + 1, ": ", t.reason));
-      lead = movedLead;
-      partner = newPartner;
+      Result r = PipelineStep(out, lead, partner, k);
+      if (!r) return Fail(out, cp, Str("step ", s + 1, " of ", steps, ": ", r.reason));
     }
     out.irregular = {lead, partner};
+    out.lead = lead;
+    out.partner = partner;
     out.result = Result::Ok();
     return out;
   }
@@ -488,6 +499,169 @@ class CompositeOperations {
        "the 5-7 pair cannot get closer (blocked by irregular vertices, folds, or already as close as it can)");
   }
 
+  // ------------------------------------------------------------ the sec. 7.1.1 pipeline
+  /// Bonus a 5-7 pair's candidate gets when the connecting path keeps its shape (a translation).
+  static constexpr double kShapeKept = 10.0;
+
+  /// The atomic removal of the triple `group` (a 5-7 pair next to a third vertex, fig. 7 read
+  /// backwards) whose survivor passes acceptSurvivor(key): key is the survivor's vertex index,
+  /// or -1 for a vertex a split would create. Same test as AtomicOperations::MoveWithPairRemoval
+  /// (two of the three disappear, one vertex of the survivor's valence is left, no other
+  /// irregular vertex is touched), over flips, collapses and also vertex splits (fig. 7 read
+  /// backwards turns its collapses into splits, sec. 6.2; MoveWithPairRemoval tries no split).
+  AtomicOutcome RemovalWithSurvivor(const std::vector<int>& group, const std::function<bool(int)>& acceptSurvivor) {
+    int n5 = 0;
+    for (int v : group) n5 += ed_.Valence(v) == 5;
+    const int survivorValence = n5 == 2 ? 5 : 7;
+    return ops_.FindAndApply(group, [&](const std::map<int, int>& before, const std::map<int, int>& after) {
+      int irregularBefore = 0, irregularAfter = 0, key = -2;
+      for (auto& kv : after) {
+        const int b = before.count(kv.first) ? before.at(kv.first) : 0;
+        const bool inGroup = std::find(group.begin(), group.end(), kv.first) != group.end();
+        if (b != 6 && b != 0) ++irregularBefore;
+        if (!inGroup && b != 6 && b != 0) return false;
+        if (kv.second != 6 && kv.second != 0) {
+          if (kv.second != survivorValence || key != -2) return false;
+          ++irregularAfter;
+          key = kv.first;
+        }
+      }
+      return irregularBefore - irregularAfter == 2 && key != -2 && acceptSurvivor(key);
+    }, Str(n5 == 2 ? "5-5-7" : "5-7-7", " triple cancelled into one v", survivorValence), true);
+  }
+
+  /// How well the step (lead: leadFrom -> newLead, partner: partnerFrom -> newPartner) realises
+  /// sec. 7.1: for a 5-7 pair (translate) the cosine between the two displacements, plus
+  /// kShapeKept when the connecting path keeps its segment lengths (and its turn, when they
+  /// differ); for a 5-5 or 7-7 pair minus that cosine (the mirrored step).
+  double StepScore(int newLead, int newPartner, const CoordType& leadFrom, const CoordType& partnerFrom,
+                   const ConnectingPath& before, bool translate) {
+    const CoordType a = ed_.V(newLead)->P() - leadFrom, b = ed_.V(newPartner)->P() - partnerFrom;
+    const double na = double(a.Norm()), nb = double(b.Norm());
+    const double c = na > 0 && nb > 0 ? double(a.dot(b)) / (na * nb) : 0.0;
+    if (!translate) return -c;
+    double sc = c;
+    if (before) {
+      SeparatrixTracer<MeshType> tracer(ed_.Mesh());
+      ConnectingPath after = tracer.Connect(newLead, newPartner, opt_.maxTransportSteps);
+      if (after && after.L1() == before.L1() && after.L2() == before.L2() &&
+          (before.L1() == before.L2() || after.turnTriangles == before.turnTriangles))
+        sc += kShapeKept;
+    }
+    return sc;
+  }
+
+  /// The reading of the lead's flip (fig. 7: the same flip moves the vertex onto either of two
+  /// new irregular vertices): MoveWithPairGeneration(lead, genK), with the lead landing on x.
+  struct LeadFlip {
+    int genK;
+  };
+
+  /// The two flips of fig. 7 that move `lead` onto its neighbour j (index from the reference).
+  std::vector<LeadFlip> LeadFlips(int lead, int j) {
+    const int d = ed_.Valence(lead);
+    auto m = [d](int i) { return ((i % d) + d) % d; };
+    // v5: flip (n_j, n_j+1) or (n_j-1, n_j); v7: flip (p, n_j-1) or (p, n_j+1)
+    if (d == 5) return {LeadFlip{m(j)}, LeadFlip{m(j - 1)}};
+    return {LeadFlip{m(j - 1)}, LeadFlip{m(j + 1)}};
+  }
+
+  /// Sec. 7.1.1 with one reading of the lead's flip: the lead moves onto x, the generated pair
+  /// is transported to the partner, and the cancellation with the best StepScore is applied
+  /// (*score). Leaves the edits applied (the caller rolls back).
+  Result RunPipeline(CompositeOutcome& out, LeadFlip flip, int x, int& lead, int& partner, const ConnectingPath& before,
+                     const CoordType& leadFrom, const CoordType& partnerFrom, bool translate, double* score) {
+    const int dl = ed_.Valence(lead);
+    AtomicOutcome g = ops_.MoveWithPairGeneration(lead, flip.genK);
+    if (!g) return Result::Fail(Str("the lead vertex cannot move that way: ", g.result.reason));
+    ++out.atomicSteps;
+    Step(out, g.description, g.irregular);
+    if (std::find(g.irregular.begin(), g.irregular.end(), x) == g.irregular.end() || ed_.Valence(x) != dl)
+      return Result::Fail("the lead's flip does not move it onto that neighbour");
+    int p5 = -1, p7 = -1;
+    for (int v : g.irregular)
+      if (v != x) (ed_.Valence(v) == 5 ? p5 : p7) = v;
+    if (p5 < 0 || p7 < 0) return Result::Fail("the lead's flip did not leave a 5-7 pair");
+    const int target = partner;
+    int newPartner = -1;
+    double best = -std::numeric_limits<double>::max();
+    Result t = Transport(out, p5, p7, {target}, [&]() {
+      // every cancellation of the triple, each tried and undone; the best one is re-applied
+      const std::vector<int> triple{p5, p7, target};
+      const int firstNew = int(ed_.Mesh().vert.size());
+      std::set<int> tried;
+      int bestKey = -3;
+      for (int guard = 0; guard < 16; ++guard) {
+        auto cp = ed_.Mark();
+        AtomicOutcome r = RemovalWithSurvivor(triple, [&](int key) { return !tried.count(key); });
+        if (!r) break;
+        const int sv = r.irregular.empty() ? -1 : r.irregular[0];
+        const int key = sv >= firstNew ? -1 : sv;
+        const double sc = sv >= 0 && ed_.IsLive(x) ? StepScore(x, sv, leadFrom, partnerFrom, before, translate)
+                                                  : -std::numeric_limits<double>::max();
+        if (sc > best) best = sc, bestKey = key;
+        ed_.RollbackTo(cp);
+        tried.insert(key);
+      }
+      if (bestKey == -3) return false;
+      AtomicOutcome r = RemovalWithSurvivor(triple, [&](int key) { return key == bestKey; });
+      if (!r) return false;
+      ++out.atomicSteps;
+      Step(out, r.description, r.irregular);
+      newPartner = r.irregular.empty() ? -1 : r.irregular[0];
+      return true;
+    });
+    if (!t) return Result::Fail(Str("transporting the generated 5-7 pair to vertex ", target, ": ", t.reason));
+    if (newPartner < 0 || !ed_.IsLive(x) || ed_.Valence(x) != dl)
+      return Result::Fail("the generated pair's transport disturbed the lead vertex");
+    lead = x;
+    partner = newPartner;
+    *score = best;
+    return Result::Ok();
+  }
+
+  /// One step of MovePair (sec. 7.1.1): tries both readings of the lead's flip and keeps the
+  /// one whose cancellation best realises the translation (5-7) or the mirrored step (5-5,
+  /// 7-7). On failure the mesh is as before.
+  Result PipelineStep(CompositeOutcome& out, int& lead, int& partner, int k) {
+    const int dl = ed_.Valence(lead), dp = ed_.Valence(partner);
+    const bool translate = dl != dp;
+    const int j = ((k % dl) + dl) % dl;
+    const int x = ops_.NeighbourFrom(lead, -1, j);
+    if (x < 0) return Result::Fail(Str("vertex ", lead, " has no neighbour ", j));
+    SeparatrixTracer<MeshType> tracer(ed_.Mesh());
+    const ConnectingPath before = tracer.Connect(lead, partner, opt_.maxTransportSteps);
+    const CoordType leadFrom = ed_.V(lead)->P(), partnerFrom = ed_.V(partner)->P();
+    const std::vector<LeadFlip> flips = LeadFlips(lead, j);
+    int bestFlip = -1;
+    double bestScore = -std::numeric_limits<double>::max();
+    std::string why;
+    for (size_t i = 0; i < flips.size(); ++i) {
+      auto cp = ed_.Mark();
+      CompositeOutcome scratch;
+      int l = lead, p = partner;
+      double sc = 0;
+      Result r = RunPipeline(scratch, flips[i], x, l, p, before, leadFrom, partnerFrom, translate, &sc);
+      ed_.RollbackTo(cp);
+      if (!r) {
+        if (why.empty()) why = r.reason;
+        continue;
+      }
+      if (sc > bestScore) bestScore = sc, bestFlip = int(i);
+    }
+    if (bestFlip < 0) return Result::Fail(why);
+    if (translate && bestScore < kShapeKept + 0.5)
+      return Result::Fail(Str("no cancellation of the generated pair next to vertex ", partner,
+                              " moves it by the lead's step: the 5-7 pair would not keep its relative position "
+                              "(sec. 7.1.1); try another direction or lead with the other vertex"));
+    if (!translate && bestScore < 0.5)
+      return Result::Fail(Str("no cancellation next to vertex ", partner,
+                              " moves it by the mirror image of the lead's step (sec. 7.1.2: a 5-5 or 7-7 pair moves "
+                              "symmetrically); try another direction"));
+    double sc = 0;
+    return RunPipeline(out, flips[size_t(bestFlip)], x, lead, partner, before, leadFrom, partnerFrom, translate, &sc);
+  }
+
   /// Transports the 5-7 pair (p5, p7) to `target` and cancels the triple it forms there
   /// (sec. 7.1.1 steps 2-3, sec. 7.2). *survivor: the vertex that remains.
   Result TransportAndCancel(CompositeOutcome& out, int p5, int p7, int target, int* survivor) {
@@ -523,8 +697,24 @@ class CompositeOperations {
         // blocked: one greedy step toward the targets' centroid, then trace the path again
         CoordType c(0, 0, 0);
         for (int t : targets) c += ed_.V(t)->P();
-        o = StepToward(p5, p7, c / float(targets.size()), targets);
-        if (!o) return o.result;
+        c /= float(targets.size());
+        o = StepToward(p5, p7, c, targets);
+        if (!o) {
+          // no single move gets closer (e.g. the pair must go round the vertex it came from):
+          // the shortest sequence of at most kDetourDepth moves that does
+          std::vector<int> dirs = Detour(p5, p7, c, targets);
+          if (dirs.empty()) return o.result;
+          for (size_t i = 0; i + 1 < dirs.size(); ++i) {
+            AtomicOutcome d = ops_.MovePair57(p5, p7, dirs[i]);
+            if (!d) return d.result;
+            ++out.atomicSteps;
+            p5 = d.irregular[0];
+            p7 = d.irregular[1];
+            Step(out, d.description + "  (detour)", {p5, p7});
+          }
+          o = ops_.MovePair57(p5, p7, dirs.back());
+          if (!o) return o.result;
+        }
         out.log += "  (path blocked: greedy step)\n";
         along.clear();
       }
@@ -534,6 +724,43 @@ class CompositeOperations {
       Step(out, o.description, {p5, p7});
     }
     return Result::Fail(Str("the 5-7 pair did not get there within ", opt_.maxTransportSteps, " steps"));
+  }
+
+  static constexpr int kDetourDepth = 5;
+
+  /// The shortest sequence (at most kDetourDepth atomic moves of fig. 6) that brings the
+  /// pair's midpoint closer to `target` by a quarter of its current edge length, never
+  /// removing a vertex of `keep`; ties: the closest end, then the lower directions. Tried and
+  /// undone; empty when there is none. At most 6 + 36 + 216 atomic moves.
+  std::vector<int> Detour(int p5, int p7, CoordType target, const std::vector<int>& keep) {
+    const double start = double((Mid(p5, p7) - target).Norm());
+    const double gain = 0.25 * double((ed_.V(p5)->P() - ed_.V(p7)->P()).Norm());
+    for (int depth = 1; depth <= kDetourDepth; ++depth) {
+      std::vector<int> best, cur;
+      double bestD = start - gain;
+      std::function<void(int, int)> dfs = [&](int a5, int a7) {
+        if (int(cur.size()) == depth) {
+          const double d = double((Mid(a5, a7) - target).Norm());
+          if (d < bestD) bestD = d, best = cur;
+          return;
+        }
+        for (int dir = 0; dir < 6; ++dir) {
+          auto cp = ed_.Mark();
+          AtomicOutcome o = ops_.MovePair57(a5, a7, dir);
+          bool ok = bool(o);
+          for (int k : keep) ok = ok && ed_.IsLive(k) && ed_.Valence(k) != 6;
+          if (ok) {
+            cur.push_back(dir);
+            dfs(o.irregular[0], o.irregular[1]);
+            cur.pop_back();
+          }
+          ed_.RollbackTo(cp);
+        }
+      };
+      dfs(p5, p7);
+      if (!best.empty()) return best;
+    }
+    return {};
   }
 
   /// The shortest connecting path from p5 or p7 to one of `targets`, as vertex -> position;
