@@ -287,8 +287,14 @@ class CompositeOperations {
   }
 
   // ------------------------------------------------------------ cancellation (sec. 7.2, 7.3)
-  /// Cancels a 5-5-7 triple into one v5 or a 5-7-7 triple into one v7. The triple needs an
-  /// adjacent 5-7 pair; that pair is transported to the third vertex.
+  /// Cancels a 5-5-7 triple into one v5 or a 5-7-7 triple into one v7 (sec. 7.2). Let v be
+  /// the vertex of the odd valence (the v7 of 5-5-7), u the other vertex nearer to it, w the
+  /// third one:
+  ///  (1) the 5-7 pair (u, v) moves toward w (adjacent: atomic moves, fig. 6; not adjacent:
+  ///      the pipeline of sec. 7.1.1, translating the pair) until v is adjacent to w;
+  ///  (2) the adjacent 5-7 pair (v, w) moves toward u until the atomic removal applies;
+  ///  (3) the atomic v5 (v7) movement and 5-7 removal leaves one vertex: out.survivor.
+  /// So three mutually non-adjacent vertices can be cancelled. All or nothing.
   CompositeOutcome CancelTriple(const std::vector<int>& triple) {
     CompositeOutcome out;
     auto cp = ed_.Mark();
@@ -302,32 +308,32 @@ class CompositeOperations {
     std::sort(sd.begin(), sd.end());
     if (sd != std::vector<int>{5, 5, 7} && sd != std::vector<int>{5, 7, 7})
       return Fail(out, cp, "a triple cancellation needs a 5-5-7 or a 5-7-7 triple");
-    // already adjacent enough?
-    {
-      AtomicOutcome r = ops_.MoveWithPairRemoval(triple);
-      if (r) {
-        ++out.atomicSteps;
-        Step(out, r.description, r.irregular);
-        out.irregular = r.irregular;
-        out.result = Result::Ok();
-        return out;
-      }
+    if (Finish3(out, triple)) return out;
+    const int odd = sd[1] == 5 ? 7 : 5;
+    int v = -1;
+    std::vector<int> same;
+    for (int x : triple) {
+      if (v < 0 && ed_.Valence(x) == odd) v = x;
+      else same.push_back(x);
     }
-    // find an adjacent 5-7 pair in the triple; the third vertex is the target
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) {
-        if (i == j || d[size_t(i)] != 5 || d[size_t(j)] != 7 || !ed_.Adjacent(triple[size_t(i)], triple[size_t(j)]))
-          continue;
-        const int third = triple[size_t(3 - i - j)];
-        int survivor = -1;
-        Result t = TransportAndCancel(out, triple[size_t(i)], triple[size_t(j)], third, &survivor);
-        if (!t) return Fail(out, cp, t.reason);
-        out.irregular = {survivor};
-        out.result = Result::Ok();
-        return out;
-      }
-    return Fail(out, cp, "no two vertices of the triple form an adjacent 5-7 pair: move two of them together first "
-                         "(Move Pair), then cancel");
+    if (same.size() != 2) return Fail(out, cp, "internal: the triple has no vertex of the odd valence");
+    auto dist = [&](int a, int b) { return double((ed_.V(a)->P() - ed_.V(b)->P()).Norm()); };
+    int u = same[0], w = same[1];
+    if (ed_.Adjacent(v, w) || (!ed_.Adjacent(v, u) && dist(v, w) < dist(v, u))) std::swap(u, w);
+    // now u is adjacent to v, or (neither adjacent) the nearer one
+    if (!ed_.Adjacent(v, w)) {
+      // phase 1: the pair (u, v) travels to w
+      Result r = ed_.Adjacent(u, v) ? MoveAdjacentPairNextTo(out, u, v, w) : MovePairNextTo(out, u, v, w);
+      if (!r) return Fail(out, cp, Str("moving the 5-7 pair (", u, ", ", v, ") to vertex ", w, ": ", r.reason));
+      if (out.survivor >= 0) return Done3(out);
+    }
+    // phase 2: the adjacent pair (v, w) travels to u and the triple cancels there
+    int p5 = ed_.Valence(v) == 5 ? v : w, p7 = p5 == v ? w : v;
+    int survivor = -1;
+    Result t = TransportAndCancel(out, p5, p7, u, &survivor);
+    if (!t) return Fail(out, cp, t.reason);
+    out.survivor = survivor;
+    return Done3(out);
   }
 
   /// Cancels a 5-5-7-7 quadruple made of two adjacent 5-7 pairs: one pair is transported to
@@ -659,14 +665,89 @@ class CompositeOperations {
                               " moves it by the mirror image of the lead's step (sec. 7.1.2: a 5-5 or 7-7 pair moves "
                               "symmetrically); try another direction"));
     double sc = 0;
-    return RunPipeline(out, flips[size_t(bestFlip)], x, lead, partner, before, leadFrom, partnerFrom, translate, &sc);
+    auto cp = ed_.Mark();
+    const int lead0 = lead, partner0 = partner;
+    Result r = RunPipeline(out, flips[size_t(bestFlip)], x, lead, partner, before, leadFrom, partnerFrom, translate, &sc);
+    if (!r) ed_.RollbackTo(cp), lead = lead0, partner = partner0;
+    return r;
+  }
+
+  // ------------------------------------------------------------ triple cancellation helpers
+  /// Applies the atomic removal when the triple is already close enough; sets out.survivor.
+  bool Finish3(CompositeOutcome& out, const std::vector<int>& triple) {
+    AtomicOutcome r = RemovalWithSurvivor(triple, [](int) { return true; });
+    if (!r) return false;
+    ++out.atomicSteps;
+    Step(out, r.description, r.irregular);
+    out.survivor = r.irregular.empty() ? -1 : r.irregular[0];
+    Done3(out);
+    return true;
+  }
+
+  CompositeOutcome& Done3(CompositeOutcome& out) {
+    out.irregular = out.survivor >= 0 ? std::vector<int>{out.survivor} : std::vector<int>{};
+    out.result = Result::Ok();
+    return out;
+  }
+
+  /// Phase 1 of sec. 7.2 for an adjacent 5-7 pair (u, v): atomic moves toward w until v is
+  /// adjacent to w (or the triple cancels: out.survivor).
+  Result MoveAdjacentPairNextTo(CompositeOutcome& out, int& u, int& v, int w) {
+    for (int s = 0; s < opt_.maxTransportSteps; ++s) {
+      if (ed_.Adjacent(v, w)) return Result::Ok();
+      if (Finish3(out, {u, v, w})) return Result::Ok();
+      int p5 = ed_.Valence(u) == 5 ? u : v, p7 = p5 == u ? v : u;
+      AtomicOutcome o = StepToward(p5, p7, ed_.V(w)->P(), {w});
+      if (!o) return o.result;
+      ++out.atomicSteps;
+      Step(out, o.description, o.irregular);
+      // the pair keeps its roles: the vertex of u's valence is the new u
+      const bool uIs5 = p5 == u;
+      u = uIs5 ? o.irregular[0] : o.irregular[1];
+      v = uIs5 ? o.irregular[1] : o.irregular[0];
+    }
+    return Result::Fail(Str("the pair did not reach vertex ", w, " within ", opt_.maxTransportSteps, " steps"));
+  }
+
+  /// Phase 1 of sec. 7.2 for a non-adjacent 5-7 pair (u, v): pipeline steps (sec. 7.1.1) led
+  /// by v onto its neighbour nearest to w, while that brings v closer, until v is adjacent to
+  /// w (or the triple cancels). O(L) pipeline steps of O(L) each.
+  Result MovePairNextTo(CompositeOutcome& out, int& u, int& v, int w) {
+    for (int s = 0; s < opt_.maxTransportSteps; ++s) {
+      if (ed_.Adjacent(v, w)) return Result::Ok();
+      if (Finish3(out, {u, v, w})) return Result::Ok();
+      if (ed_.Adjacent(u, v)) return MoveAdjacentPairNextTo(out, u, v, w);
+      // v's neighbours closer to w than v, nearest first
+      VertexStar<MeshType> st = ed_.Star(v);
+      const CoordType pw = ed_.V(w)->P();
+      const double here = double((ed_.V(v)->P() - pw).Norm());
+      std::vector<std::pair<double, int>> cand;
+      for (int k = 0; k < st.Valence(); ++k) {
+        const int x = ops_.NeighbourFrom(v, -1, k);
+        const double dx = double((ed_.V(x)->P() - pw).Norm());
+        if (dx < here) cand.push_back({dx, k});
+      }
+      std::sort(cand.begin(), cand.end());
+      Result last = Result::Fail(Str("vertex ", v, " has no neighbour closer to vertex ", w));
+      bool moved = false;
+      for (auto& c : cand) {
+        int l = v, p = u;
+        last = PipelineStep(out, l, p, c.second);
+        if (last) {
+          v = l, u = p, moved = true;
+          break;
+        }
+      }
+      if (!moved) return last;
+    }
+    return Result::Fail(Str("the pair did not reach vertex ", w, " within ", opt_.maxTransportSteps, " steps"));
   }
 
   /// Transports the 5-7 pair (p5, p7) to `target` and cancels the triple it forms there
   /// (sec. 7.1.1 steps 2-3, sec. 7.2). *survivor: the vertex that remains.
   Result TransportAndCancel(CompositeOutcome& out, int p5, int p7, int target, int* survivor) {
     Result t = Transport(out, p5, p7, {target}, [&]() {
-      AtomicOutcome r = ops_.MoveWithPairRemoval({p5, p7, target});
+      AtomicOutcome r = RemovalWithSurvivor({p5, p7, target}, [](int) { return true; });
       if (!r) return false;
       ++out.atomicSteps;
       Step(out, r.description, r.irregular);

@@ -1,0 +1,120 @@
+// Unit tests of the cancellations and generations of sec. 7.2-7.3 and of the impossibility
+// checks of sec. 5 (composite_ops.h, impossibility.h): where the vertices end up.
+#include <gtest/gtest.h>
+
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <vcg_ext/irregular/composite_ops.h>
+#include <vcg_ext/irregular/mesh_checks.h>
+
+#include "composite_test_util.h"
+#include "test_mesh.h"
+#include "test_util.h"
+
+using namespace vcg_ext::irregular;
+using test::Irregular;
+using test::Park;
+using test::TMesh;
+
+namespace {
+typedef vcg::Point3f P3;
+
+/// Graph distance between two vertices (BFS over the face list's edges).
+int Distance(TMesh& m, int a, int b) {
+  std::vector<std::set<int>> adj(m.vert.size());
+  for (auto& f : m.face)
+    if (!f.IsD())
+      for (int z = 0; z < 3; ++z) {
+        const int x = int(vcg::tri::Index(m, f.V(z))), y = int(vcg::tri::Index(m, f.V((z + 1) % 3)));
+        adj[size_t(x)].insert(y);
+        adj[size_t(y)].insert(x);
+      }
+  std::vector<int> d(adj.size(), -1), q{a};
+  d[size_t(a)] = 0;
+  for (size_t i = 0; i < q.size(); ++i)
+    for (int y : adj[size_t(q[i])])
+      if (d[size_t(y)] < 0) d[size_t(y)] = d[size_t(q[i])] + 1, q.push_back(y);
+  return d[size_t(b)];
+}
+
+/// On an icosphere (level 4: the twelve v5 are 16 edges apart), a 5-5-7 triple of three
+/// mutually non-adjacent vertices near one of the v5: the v5 moves one step leaving a 5-7
+/// pair (fig. 7), the pair is parked 3 steps away, then its v5 moves one step away from its
+/// v7 leaving another pair, which is parked 4 steps away. Atomic operations only.
+struct SpreadTriple {
+  TMesh m;
+  int a5 = -1, b5 = -1, c7 = -1;  ///< the triple
+  void Build() {
+    test::Icosphere(m, 4);
+    MeshEditor<TMesh> ed(m);
+    AtomicOperations<TMesh> ops(ed);
+    int p = -1;
+    for (size_t i = 0; i < m.vert.size() && p < 0; ++i)
+      if (ed.Valence(int(i)) == 5) p = int(i);
+    AtomicOutcome g = ops.MoveWithPairGeneration(p, 0);
+    ASSERT_TRUE(g) << g.result.reason;
+    a5 = g.irregular[0];
+    int g5 = g.irregular[1], g7 = g.irregular[2];
+    if (ed.Valence(g5) != 5) std::swap(g5, g7);
+    Park(ed, ops, g5, g7, {m.vert[size_t(a5)].P()}, 3);
+    if (::testing::Test::HasFatalFailure()) return;
+    int bestK = -1;
+    float bestD = -1;
+    for (int k = 0; k < 5; ++k) {
+      auto cp = ed.Mark();
+      AtomicOutcome h = ops.MoveWithPairGeneration(g5, k);
+      if (h) {
+        const P3 q = m.vert[size_t(h.irregular[0])].P();
+        const float dd = std::min((q - m.vert[size_t(g7)].P()).Norm(), (q - m.vert[size_t(a5)].P()).Norm());
+        if (dd > bestD) bestD = dd, bestK = k;
+      }
+      ed.RollbackTo(cp);
+    }
+    ASSERT_GE(bestK, 0);
+    AtomicOutcome h = ops.MoveWithPairGeneration(g5, bestK);
+    ASSERT_TRUE(h);
+    b5 = h.irregular[0];
+    c7 = g7;
+    int h5 = h.irregular[1], h7 = h.irregular[2];
+    if (ed.Valence(h5) != 5) std::swap(h5, h7);
+    Park(ed, ops, h5, h7, {m.vert[size_t(a5)].P(), m.vert[size_t(b5)].P(), m.vert[size_t(c7)].P()}, 4);
+    ed.Commit();
+  }
+};
+}  // namespace
+
+// Sec. 7.2: a 5-5-7 triple of three mutually non-adjacent vertices is cancelled by the two
+// phases (the pair (u, v) to w, then (v, w) to u, then the atomic removal): one v5 is left,
+// inside the triple's region; every other irregular vertex is where it was.
+TEST(TripleCancellation, ThreeMutuallyNonAdjacentVerticesLeaveOneV5) {
+  SpreadTriple t;
+  t.Build();
+  if (HasFatalFailure()) return;
+  TMesh& m = t.m;
+  MeshEditor<TMesh> ed(m);
+  ASSERT_FALSE(ed.Adjacent(t.a5, t.b5));
+  ASSERT_FALSE(ed.Adjacent(t.a5, t.c7));
+  ASSERT_FALSE(ed.Adjacent(t.b5, t.c7));
+  const int span = std::max({Distance(m, t.a5, t.b5), Distance(m, t.a5, t.c7), Distance(m, t.b5, t.c7)});
+  const std::map<int, int> before = Irregular(m);
+  SurfaceProjector original(m);
+  CompositeOperations<TMesh> co(ed, &original);
+  const std::vector<int> triple{t.a5, t.b5, t.c7};
+  CompositeOutcome o = co.CancelTriple(triple);
+  ASSERT_TRUE(o) << o.result.reason << "\n" << o.log;
+  ASSERT_GE(o.survivor, 0);
+  EXPECT_EQ(o.irregular, std::vector<int>{o.survivor});
+  EXPECT_EQ(ed.Valence(o.survivor), 5);
+  std::map<int, int> expect = before;
+  for (int v : triple) expect.erase(v);
+  expect[o.survivor] = 5;
+  EXPECT_EQ(Irregular(m), expect) << o.log;
+  // inside the triple's region: no further from each of the three than they were apart
+  for (int v : triple)
+    if (ed.IsLive(v)) EXPECT_LE(Distance(m, v, o.survivor), span) << o.log;
+  EXPECT_TRUE(CheckInvariants(m).ok) << CheckInvariants(m).reason;
+  EXPECT_GT(o.atomicSteps, 2);
+}
