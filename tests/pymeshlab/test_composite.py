@@ -176,8 +176,8 @@ def quadruple(spacing=3):
     return tri(ms)
 
 
-@pytest.mark.parametrize("lead,direction", [("Lower valence", 0), ("Lower index", 0), ("Higher valence", 4),
-                                            ("Higher index", 4)])
+@pytest.mark.parametrize("lead,direction", [("Lower valence", 0), ("Lower index", 0), ("Higher valence", 2),
+                                            ("Higher index", 3)])
 def test_non_adjacent_pair_lead_vertex_moves_to_its_neighbour(lead, direction):
     """A non-adjacent 5-7 pair (sec. 7.1.1): the lead (the v5 for 'Lower valence', the v7 for
     'Higher valence'; by index otherwise) moves one step toward its neighbour `direction` -
@@ -206,20 +206,39 @@ def test_non_adjacent_pair_lead_vertex_moves_to_its_neighbour(lead, direction):
     fo.check_invariants(t1)
 
 
+def test_non_adjacent_pair_keeps_its_relative_position_or_refuses():
+    """Sec. 7.1.1: the pair translates. Where no cancellation next to the partner moves it by
+    the lead's step (the v7 leading toward its neighbour 4 here, with the other pair's
+    vertices beside both), the move is refused and the mesh is unchanged."""
+    tq = quadruple()
+    ms = mesh_set(tq)
+    select(ms, [1897, 2158])
+    refuse(ms, MOVE_PAIR, "would not keep its relative position", lead="Higher valence", direction=4, steps=1,
+           relax=False)
+
+
 def test_five_five_pair_moves_both():
-    """A 5-5 pair: the lead moves onto its neighbour `direction`, the partner one step too."""
+    """A 5-5 pair (sec. 7.1.2): the lead moves onto its neighbour `direction`, the partner one
+    step too, the mirrored one (its step points the other way); where no cancellation gives
+    the mirrored step (direction 0 here: 7s next to both), the move is refused, mesh unchanged."""
     tq = quadruple()
     a, b = 24, 1897
     assert fo.valences(tq)[[a, b]].tolist() == [5, 5] and not fo.adjacent(tq, a, b)
     ms = mesh_set(tq)
     select(ms, [a, b])
-    apply(ms, MOVE_PAIR, lead="Lower index", direction=0, steps=1, relax=False)
+    refuse(ms, MOVE_PAIR, "mirror image of the lead's step", lead="Lower index", direction=0, steps=1, relax=False)
+    apply(ms, MOVE_PAIR, lead="Lower index", direction=1, steps=1, relax=False)
     t1 = tri(ms)
     where = index_by_position(tq, t1)
     sel = selected(ms)
     assert sorted(fo.valences(t1)[sel].tolist()) == [5, 5]
-    assert fo.neighbour_from(tq, a, 0) in where[sel]  # the lead is on its neighbour 0
+    landing = fo.neighbour_from(tq, a, 1)
+    assert landing in where[sel]  # the lead is on its neighbour 1
     assert b not in where[sel]  # the partner moved too
+    other = int(next(v for v in sel if where[v] != landing))
+    lead_step = tq.vertices[landing] - tq.vertices[a]
+    partner_step = t1.vertices[other] - tq.vertices[b]
+    assert np.dot(lead_step, partner_step) < 0  # the mirrored step
     assert np.array_equal(hist(t1), hist(tq))
 
 

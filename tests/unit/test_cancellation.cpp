@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <vcg_ext/irregular/composite_ops.h>
+#include <vcg_ext/irregular/impossibility.h>
 #include <vcg_ext/irregular/mesh_checks.h>
 
 #include "composite_test_util.h"
@@ -117,4 +118,90 @@ TEST(TripleCancellation, ThreeMutuallyNonAdjacentVerticesLeaveOneV5) {
     if (ed.IsLive(v)) EXPECT_LE(Distance(m, v, o.survivor), span) << o.log;
   EXPECT_TRUE(CheckInvariants(m).ok) << CheckInvariants(m).reason;
   EXPECT_GT(o.atomicSteps, 2);
+}
+
+// Theorem 5.1 is decided on its condition: a v5 whose neighbourhood holds no other irregular
+// vertex (an icosphere's v5: the next one is 8 edges away) cannot move alone, and the answer
+// says how far the free region reaches and names the nearest vertex; the same vertex with an
+// irregular vertex next to it (a 5-7 pair generated beside it) is not covered by the theorem,
+// and the answer names that neighbour. Nothing is edited.
+TEST(Impossibility, Theorem51DependsOnTheIrregularVerticesAround) {
+  TMesh m;
+  test::Icosphere(m, 3);
+  MeshEditor<TMesh> ed(m);
+  AtomicOperations<TMesh> ops(ed);
+  int p = -1;
+  for (size_t i = 0; i < m.vert.size() && p < 0; ++i)
+    if (ed.Valence(int(i)) == 5) p = int(i);
+  const auto snap = test::Snapshot(m);
+  ImpossibilityCheck<TMesh> check(m);
+  TheoremVerdict alone = check.SingleVertexMove(p);
+  EXPECT_EQ(test::Snapshot(m), snap);
+  EXPECT_TRUE(alone.applies);
+  EXPECT_EQ(alone.freeRings, 7);  // level 3: the twelve v5 are 8 edges apart
+  EXPECT_EQ(alone.nearestDistance, 8);
+  EXPECT_EQ(alone.nearestValence, 5);
+  EXPECT_NE(alone.message.find("Theorem 5.1"), std::string::npos);
+  EXPECT_NE(alone.message.find("7-ring"), std::string::npos) << alone.message;
+  EXPECT_EQ(alone.message.find("but irregular vertex"), std::string::npos) << alone.message;
+
+  AtomicOutcome g = ops.MoveWithPairGeneration(p, 0);
+  ASSERT_TRUE(g);
+  const int moved = g.irregular[0];
+  const auto snap2 = test::Snapshot(m);
+  TheoremVerdict near = check.SingleVertexMove(moved);
+  EXPECT_EQ(test::Snapshot(m), snap2);
+  EXPECT_FALSE(near.applies);
+  EXPECT_EQ(near.freeRings, 0);
+  EXPECT_EQ(near.nearestDistance, 1);
+  EXPECT_TRUE(near.nearest == g.irregular[1] || near.nearest == g.irregular[2]);
+  EXPECT_NE(near.message.find("but irregular vertex " + std::to_string(near.nearest)), std::string::npos)
+      << near.message;
+  EXPECT_NE(near.message.find("'Move Pair'"), std::string::npos) << near.message;
+}
+
+// Theorem 5.5 is decided on its condition: the 5-7 pair generated beside an icosphere's v5
+// is not covered by it (the v5 is one edge away: the answer proposes the 5-5-7 triple, which
+// Cancel Triple then cancels); parked 6 steps away from every other irregular vertex, the
+// same pair is (the answer is the theorem, with the free rings). Nothing is edited.
+TEST(Impossibility, Theorem55DependsOnAThirdIrregularVertexNearby) {
+  TMesh m;
+  test::Icosphere(m, 4);
+  MeshEditor<TMesh> ed(m);
+  AtomicOperations<TMesh> ops(ed);
+  int p = -1;
+  for (size_t i = 0; i < m.vert.size() && p < 0; ++i)
+    if (ed.Valence(int(i)) == 5) p = int(i);
+  AtomicOutcome g = ops.MoveWithPairGeneration(p, 0);
+  ASSERT_TRUE(g);
+  const int moved = g.irregular[0];
+  int g5 = g.irregular[1], g7 = g.irregular[2];
+  if (ed.Valence(g5) != 5) std::swap(g5, g7);
+  ImpossibilityCheck<TMesh> check(m);
+  auto snap = test::Snapshot(m);
+  TheoremVerdict withThird = check.PairCancellation(g5, g7);
+  EXPECT_EQ(test::Snapshot(m), snap);
+  EXPECT_FALSE(withThird.applies);
+  EXPECT_EQ(withThird.nearest, moved);
+  EXPECT_EQ(withThird.nearestDistance, 1);
+  EXPECT_NE(withThird.message.find("but irregular vertex " + std::to_string(moved)), std::string::npos)
+      << withThird.message;
+  EXPECT_NE(withThird.message.find("5-5-7 triple"), std::string::npos) << withThird.message;
+  {  // and the triple it proposes can indeed be cancelled
+    auto cp = ed.Mark();
+    SurfaceProjector original(m);
+    CompositeOperations<TMesh> co(ed, &original);
+    CompositeOutcome c = co.CancelTriple({g5, g7, moved});
+    EXPECT_TRUE(c) << c.result.reason;
+    ed.RollbackTo(cp);
+  }
+  Park(ed, ops, g5, g7, {m.vert[size_t(moved)].P()}, 6);
+  if (HasFatalFailure()) return;
+  snap = test::Snapshot(m);
+  TheoremVerdict alone = check.PairCancellation(g5, g7);
+  EXPECT_EQ(test::Snapshot(m), snap);
+  EXPECT_TRUE(alone.applies) << alone.message;
+  EXPECT_GE(alone.freeRings, 3);
+  EXPECT_NE(alone.message.find("Theorem 5.5"), std::string::npos);
+  EXPECT_EQ(alone.message.find("but irregular vertex"), std::string::npos) << alone.message;
 }

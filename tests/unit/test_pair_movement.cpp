@@ -164,7 +164,7 @@ TEST(PairMovement, NonAdjacent57PairTranslatesByTheLeadsLatticeStep) {
       const int lead = leadIsV5 ? sp.v5 : sp.v7, partner = leadIsV5 ? sp.v7 : sp.v5;
       const int d = ed.Valence(lead);
       for (int k = 0; k < d; ++k) {
-        const int x = co.atomic().NeighbourFrom(lead, -1, k);
+        const int x = co.atomic().NeighbourFrom(lead, -1, d == 7 ? k + 1 : k);  // fig. 7: a v7 lands on k + 1
         const int sector = Sector(m, lead, x);
         auto cp = ed.Mark();
         CompositeOutcome o = co.MovePair(lead, partner, k, 1);

@@ -246,8 +246,9 @@ class CompositeOperations {
   }
 
   /// Moves a pair (5-7, 5-5 or 7-7; adjacent or not) one step per repetition with the
-  /// pipeline of sec. 7.1.1: `lead` moves one step onto its neighbour k (counted from the
-  /// neighbour of smallest index) generating a 5-7 pair, the pair is transported to
+  /// pipeline of sec. 7.1.1: `lead` moves one step toward its neighbour k (counted from the
+  /// neighbour of smallest index; as in MoveWithPairGeneration a v5 lands on neighbour k, a
+  /// v7 on neighbour k + 1) generating a 5-7 pair, the pair is transported to
   /// `partner` and cancelled there, moving the partner one step.
   /// Which step the partner makes is chosen, among the cancellations the triple admits (and
   /// the two readings of the lead's flip, fig. 7), so that
@@ -632,7 +633,8 @@ class CompositeOperations {
   Result PipelineStep(CompositeOutcome& out, int& lead, int& partner, int k) {
     const int dl = ed_.Valence(lead), dp = ed_.Valence(partner);
     const bool translate = dl != dp;
-    const int j = ((k % dl) + dl) % dl;
+    // as MoveWithPairGeneration: a v5 moves onto its neighbour k, a v7 onto neighbour k + 1
+    const int j = (((dl == 7 ? k + 1 : k) % dl) + dl) % dl;
     const int x = ops_.NeighbourFrom(lead, -1, j);
     if (x < 0) return Result::Fail(Str("vertex ", lead, " has no neighbour ", j));
     SeparatrixTracer<MeshType> tracer(ed_.Mesh());
