@@ -197,6 +197,12 @@ FilterOutcome ApplyGenerate(FilterContext& ctx, const ParamValues& par) {
     const std::string count = f.NeedCount(1, "Generation");
     if (!count.empty()) return Refused(count);
     const int dir = par.Int("direction"), spacing = par.Int("spacing");
+    if (par.Enum("shape") == 1) {
+      if (par.Enum("kind") == 0)
+        return Refused("The parallelogram shape is for a quadruple (generate it from a regular vertex).");
+      return f.ops.GenerateQuadrupleShape(f.sel[0], dir, par.Int("side1Direction"), par.Int("side1"),
+                                          par.Int("side2Direction"), par.Int("side2"));
+    }
     return par.Enum("kind") == 0 ? f.ops.GenerateTriple(f.sel[0], dir, spacing)
                                  : f.ops.GenerateQuadruple(f.sel[0], dir, spacing);
   });

@@ -256,8 +256,10 @@ def test_move_pair_refusals():
 @pytest.mark.parametrize("p", REGULAR)
 @pytest.mark.parametrize("spacing", [0, 1, 2, 4])
 def test_generate_quadruple_spacing(p, spacing):
-    """A regular vertex becomes a 5-5-7-7 quadruple; its second 5-7 pair ends `spacing` steps
-    away: the quadruple spans spacing + 2 edges."""
+    """A regular vertex becomes a 5-5-7-7 quadruple; its second 5-7 pair makes `spacing` steps,
+    none back toward the first pair (sec. 7.3's greedy placement made monotone): the quadruple
+    spans spacing + 2 edges, or spacing + 1 where a step could only go sideways (the knot's
+    surface at vertex 25, spacing 4). Exact shapes: test_generate_a_quadruple_of_a_given_shape."""
     ms = load("knot1.off")
     t0 = tri(ms)
     select(ms, [p])
@@ -267,7 +269,7 @@ def test_generate_quadruple_spacing(p, spacing):
     sel = selected(ms)
     assert sorted(fo.valences(t1)[sel].tolist()) == [5, 5, 7, 7]
     span = max(fo.hop_distances(t1, [s])[sel].max() for s in sel)
-    assert span == spacing + 2
+    assert spacing + 1 <= span <= spacing + 2 and (span == spacing + 2 or spacing == 4)
     assert out["atomic_steps"] == spacing + 1
     assert out["v5_after"] == out["v5_before"] + 2 and out["v7_after"] == out["v7_before"] + 2
     assert_counts(out, t1, "_after")
@@ -333,6 +335,36 @@ def test_generate_example():
     assert sorted(fo.valences(t1)[selected(ms)].tolist()) == [5, 5, 7, 7]
     assert_counts(out, t1, "_after")
     fo.check_invariants(t1)
+
+
+@pytest.mark.parametrize("side1direction,side1,side2direction,side2", [(4, 3, 1, 2), (4, 2, 1, 0), (4, 3, 0, 2)])
+def test_generate_a_quadruple_of_a_given_shape_then_cancel_it(side1direction, side1, side2direction, side2):
+    """Sec. 7.3, fig. 11: the quadruple's second pair is placed by exactly side1 + side2
+    atomic steps (atomic_steps = 1 + side1 + side2), the first pair stays where the generating
+    flip put it (regular vertex 25's neighbours), and Cancel Quadruple restores the valence
+    histogram; a shape that runs into the other pair is refused, mesh unchanged."""
+    ms = load("knot1.off")
+    t0 = tri(ms)
+    select(ms, [REGULAR[0]])
+    out = apply(ms, GENERATE, kind="Quadruple from a regular vertex", direction=0, shape="Parallelogram (quadruple)",
+                side1direction=side1direction, side1=side1, side2direction=side2direction, side2=side2, relax=False)
+    t1 = tri(ms)
+    assert out["atomic_steps"] == 1 + side1 + side2
+    sel = selected(ms)
+    assert sorted(fo.valences(t1)[sel].tolist()) == [5, 5, 7, 7]
+    assert 24 in sel.tolist() and 2158 in sel.tolist()  # the pair that stayed
+    fo.check_invariants(t1)
+    apply(ms, CANCEL_QUADRUPLE, relax=False)
+    assert np.array_equal(hist(tri(ms)), hist(t0))
+    fo.check_invariants(tri(ms))
+
+
+def test_generate_shape_that_runs_into_the_other_pair_is_refused():
+    ms = load("knot1.off")
+    select(ms, [REGULAR[0]])
+    refuse(ms, GENERATE, ["placing the generated 5-7 pair", "is in the way"], kind="Quadruple from a regular vertex",
+           direction=0, shape="Parallelogram (quadruple)", side1direction=1, side1=3, side2direction=4, side2=2,
+           relax=False)
 
 
 def test_composite_refusals():

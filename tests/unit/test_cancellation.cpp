@@ -23,6 +23,12 @@ using test::TMesh;
 namespace {
 typedef vcg::Point3f P3;
 
+std::multiset<int> IrregularValences(TMesh& m) {
+  std::multiset<int> r;
+  for (auto& kv : Irregular(m)) r.insert(kv.second);
+  return r;
+}
+
 /// Graph distance between two vertices (BFS over the face list's edges).
 int Distance(TMesh& m, int a, int b) {
   std::vector<std::set<int>> adj(m.vert.size());
@@ -204,4 +210,94 @@ TEST(Impossibility, Theorem55DependsOnAThirdIrregularVertexNearby) {
   EXPECT_GE(alone.freeRings, 3);
   EXPECT_NE(alone.message.find("Theorem 5.5"), std::string::npos);
   EXPECT_EQ(alone.message.find("but irregular vertex"), std::string::npos) << alone.message;
+}
+
+// Sec. 7.3: generation with a chosen shape. On a regular torus (vertex (i, j) has index
+// i * 40 + j), the moved pair makes exactly x flips in pair direction dirX, then y in dirY
+// (fig. 6: flips keep vertex indices, so lattice coordinates are read from the indices): its
+// two vertices end at their start + x * (first step) + y * (first step of the second leg);
+// the other pair has not moved; then cancelling the quadruple restores a regular mesh.
+TEST(Generation, QuadrupleOfAGivenShapeAndItsCancellation) {
+  struct Shape {
+    int dirX, x, dirY, y;
+  };
+  int cancelled = 0;
+  for (Shape sh : {Shape{4, 3, 4, 0}, Shape{4, 3, 1, 2}, Shape{4, 4, 1, 3}, Shape{4, 5, 1, 5}, Shape{4, 1, 1, 1}}) {
+    SCOPED_TRACE(testing::Message() << "shape " << sh.dirX << " x " << sh.x << ", " << sh.dirY << " x " << sh.y);
+    TMesh m;
+    test::RegularTorus(m, 40, 40);
+    MeshEditor<TMesh> ed(m);
+    CompositeOptions opt;
+    opt.relax = false;
+    CompositeOperations<TMesh> co(ed, nullptr, opt);
+    const int c = 20 * 40 + 20;
+    auto ij = [](int v) { return std::make_pair(v / 40, v % 40); };
+    // the first step of each leg, measured on a copy of the same construction
+    std::pair<int, int> e1, e2;
+    {
+      auto cp = ed.Mark();
+      AtomicOutcome g = co.atomic().GenerateQuadruple(c, 0, false);
+      ASSERT_TRUE(g);
+      int a5 = g.irregular[0], a7 = g.irregular[2];
+      AtomicOutcome s1 = co.atomic().MovePair57(a5, a7, sh.dirX);
+      ASSERT_TRUE(s1);
+      e1 = {ij(s1.irregular[0]).first - ij(a5).first, ij(s1.irregular[0]).second - ij(a5).second};
+      AtomicOutcome s2 = co.atomic().MovePair57(s1.irregular[0], s1.irregular[1], sh.dirY);
+      ASSERT_TRUE(s2);
+      e2 = {ij(s2.irregular[0]).first - ij(s1.irregular[0]).first,
+            ij(s2.irregular[0]).second - ij(s1.irregular[0]).second};
+      ed.RollbackTo(cp);
+    }
+    AtomicOutcome probe = co.atomic().GenerateQuadruple(c, 0, false);  // where the pairs start
+    ASSERT_TRUE(probe);
+    const int a5 = probe.irregular[0], a7 = probe.irregular[2], b5 = probe.irregular[1], b7 = probe.irregular[3];
+    ASSERT_TRUE(ed.Flip(probe.irregular[2], probe.irregular[3]).ok);  // undo the generating flip
+    ASSERT_TRUE(IrregularValences(m).empty());
+    CompositeOutcome g = co.GenerateQuadrupleShape(c, 0, sh.dirX, sh.x, sh.dirY, sh.y);
+    ASSERT_TRUE(g) << g.result.reason;
+    EXPECT_EQ(g.atomicSteps, 1 + sh.x + sh.y);
+    auto at = [&](int v, int n1, int n2) {
+      const int i = ij(v).first + n1 * e1.first + n2 * e2.first, j = ij(v).second + n1 * e1.second + n2 * e2.second;
+      return ((i % 40) + 40) % 40 * 40 + ((j % 40) + 40) % 40;
+    };
+    EXPECT_EQ(g.pair5, at(a5, sh.x, sh.y));
+    EXPECT_EQ(g.pair7, at(a7, sh.x, sh.y));
+    EXPECT_EQ(g.other5, b5);
+    EXPECT_EQ(g.other7, b7);
+    std::map<int, int> expect{{g.pair5, 5}, {g.pair7, 7}, {b5, 5}, {b7, 7}};
+    EXPECT_EQ(Irregular(m), expect);
+    EXPECT_TRUE(CheckInvariants(m).ok) << CheckInvariants(m).reason;
+    CompositeOutcome back = co.CancelQuadruple(g.irregular);
+    EXPECT_TRUE(back) << back.result.reason << "\n" << back.log;
+    if (back) {
+      ++cancelled;
+      EXPECT_TRUE(Irregular(m).empty());
+      EXPECT_TRUE(CheckInvariants(m).ok) << CheckInvariants(m).reason;
+    }
+  }
+  EXPECT_EQ(cancelled, 5);
+}
+
+// Sec. 7.3: a quadruple cancellation that fails because the transport stops (here the step
+// cap) says so, and does not blame fig. 11's configuration; the mesh is unchanged.
+TEST(Generation, QuadrupleCancellationReportsTheStepCapAsSuch) {
+  TMesh m;
+  test::RegularTorus(m, 40, 40);
+  MeshEditor<TMesh> ed(m);
+  CompositeOptions opt;
+  opt.relax = false;
+  CompositeOperations<TMesh> co(ed, nullptr, opt);
+  CompositeOutcome g = co.GenerateQuadrupleShape(20 * 40 + 20, 0, 4, 6, 4, 0);
+  ASSERT_TRUE(g) << g.result.reason;
+  ed.Commit();
+  const auto snap = test::Snapshot(m);
+  CompositeOptions capped = opt;
+  capped.maxTransportSteps = 2;
+  CompositeOperations<TMesh> co2(ed, nullptr, capped);
+  CompositeOutcome c = co2.CancelQuadruple(g.irregular);
+  ASSERT_FALSE(c);
+  EXPECT_NE(c.result.reason.find("could not be brought to the other pair"), std::string::npos) << c.result.reason;
+  EXPECT_NE(c.result.reason.find("within 2 steps"), std::string::npos) << c.result.reason;
+  EXPECT_EQ(c.result.reason.find("fig. 11"), std::string::npos) << c.result.reason;
+  EXPECT_EQ(test::Snapshot(m), snap);
 }

@@ -351,6 +351,12 @@ class CompositeOperations {
       if (ed_.Valence(v) != 5 && ed_.Valence(v) != 7) return Fail(out, cp, "a quadruple is two v5 and two v7");
     }
     if (v5.size() != 2) return Fail(out, cp, "a quadruple is two v5 and two v7");
+    const std::vector<int> quad0 = quad;
+    // fig. 11's polygon of the quadruple as selected, reported when the cancellation fails
+    // (measured on the mesh, whose other irregular vertices bend the straight paths, so it
+    // explains a failure rather than predicting one)
+    SeparatrixTracer<MeshType> tracer(ed_.Mesh());
+    const QuadruplePolygon before = tracer.Polygon(quad0, opt_.maxTransportSteps);
     {
       AtomicOutcome r = ops_.RemoveQuadruple(quad);
       if (r) {
@@ -377,9 +383,67 @@ class CompositeOperations {
       out.result = Result::Ok();
       return out;
     }
+    // Say what happened: the pairs met and do not annihilate (fig. 11's condition), or the
+    // transport was blocked or hit the step cap before they met.
+    bool met = false;
+    for (int x : {a5, a7})
+      for (int y : {b5, b7}) met = met || (ed_.IsLive(x) && ed_.IsLive(y) && (x == y || ed_.Adjacent(x, y)));
+    const std::string sides = before.result.ok ? " The connecting paths of the quadruple as selected, (x_i, y_i) = " +
+                                           before.Sides() +
+                                           (before.OppositeSidesMatch() ? ", do match on opposite sides."
+                                                                        : ", do not match on opposite sides.")
+                                     : std::string();
+    if (!met)
+      return Fail(out, cp, "the 5-7 pair (" + Str(quad0[0]) + "...) could not be brought to the other pair: " + t.reason +
+                               "." + sides);
     return Fail(out, cp, "the two 5-7 pairs met but do not annihilate (" + t.reason +
-                             "): they are not in the configuration of fig. 11 (sec. 7.3: a 5-7 pair and its mirror "
-                             "image cancel; two pairs with the same orientation do not)");
+                             "): they are not in the configuration of fig. 11 (sec. 7.3: the four connecting paths must "
+                             "form a polygon whose opposite sides match, x_i = x_{i+2}, y_i = y_{i+2}; otherwise one 5-7 "
+                             "pair could be removed alone, which Theorem 5.5 forbids)." + sides);
+  }
+
+  // ------------------------------------------------------------ generation with a shape
+  /// Moves the adjacent 5-7 pair exactly `steps` times by the same atomic move `dir` (fig. 6:
+  /// repeating a move parallel-transports the pair along a straight line); fails, without
+  /// substituting another move, where that move is blocked.
+  Result MoveStraight(CompositeOutcome& out, int& p5, int& p7, int dir, int steps) {
+    for (int s = 0; s < steps; ++s) {
+      AtomicOutcome o = ops_.MovePair57(p5, p7, dir);
+      if (!o) return Result::Fail(Str("step ", s + 1, " of ", steps, " in direction ", dir, ": ", o.result.reason));
+      ++out.atomicSteps;
+      p5 = o.irregular[0];
+      p7 = o.irregular[1];
+      Step(out, o.description, {p5, p7});
+    }
+    return Result::Ok();
+  }
+
+  /// Sec. 7.3, fig. 11: a regular vertex becomes a 5-5-7-7 quadruple (atomic flip, fig. 8)
+  /// whose second 5-7 pair is then placed exactly: `x` atomic steps in pair direction dirX,
+  /// then `y` in direction dirY (atomic_ops.h's pair directions, 0..5 around the v5 from the
+  /// v7). The four vertices then span the parallelogram of fig. 11 with sides (x, y) and the
+  /// pair's edge, whose opposite sides match by construction, so CancelQuadruple can undo it.
+  /// out.pair5/pair7: the moved pair; out.other5/other7: the pair that stayed.
+  CompositeOutcome GenerateQuadrupleShape(int v, int k, int dirX, int x, int dirY, int y) {
+    CompositeOutcome out;
+    auto cp = ed_.Mark();
+    AtomicOutcome g = ops_.GenerateQuadruple(v, k, false);
+    if (!g) return Fail(out, cp, g.result.reason);
+    ++out.atomicSteps;
+    Step(out, g.description, g.irregular);
+    // g.irregular = {p, n_k, n_k-1, n_k+1}: pairs (p, n_k-1) and (n_k, n_k+1)
+    int a5 = g.irregular[0], a7 = g.irregular[2];
+    const int b5 = g.irregular[1], b7 = g.irregular[3];
+    Result r = MoveStraight(out, a5, a7, dirX, x);
+    if (r) r = MoveStraight(out, a5, a7, dirY, y);
+    if (!r) return Fail(out, cp, Str("placing the generated 5-7 pair: ", r.reason));
+    for (int keep : {b5, b7})
+      if (!ed_.IsLive(keep) || (ed_.Valence(keep) != 5 && ed_.Valence(keep) != 7))
+        return Fail(out, cp, "the moved pair ran into the pair that stayed: choose other directions or longer sides");
+    out.irregular = {a5, a7, b5, b7};
+    out.pair5 = a5, out.pair7 = a7, out.other5 = b5, out.other7 = b7;
+    out.result = Result::Ok();
+    return out;
   }
 
   // ------------------------------------------------------------ generation (sec. 7.3)
@@ -396,6 +460,7 @@ class CompositeOperations {
     for (size_t i = 1; i < g.irregular.size(); ++i) (ed_.Valence(g.irregular[i]) == 5 ? p5 : p7) = g.irregular[i];
     if (!MoveApart(out, p5, p7, g.irregular[0], spacing)) return Fail(out, cp, out.result.reason);
     out.irregular = {g.irregular[0], p5, p7};
+    out.survivor = g.irregular[0], out.pair5 = p5, out.pair7 = p7;
     out.result = Result::Ok();
     return out;
   }
@@ -413,6 +478,7 @@ class CompositeOperations {
     int a5 = g.irregular[0], a7 = g.irregular[2], b5 = g.irregular[1], b7 = g.irregular[3];
     if (!MoveApart(out, a5, a7, Mid(b5, b7), spacing, {b5, b7})) return Fail(out, cp, out.result.reason);
     out.irregular = {a5, a7, b5, b7};
+    out.pair5 = a5, out.pair7 = a7, out.other5 = b5, out.other7 = b7;
     out.result = Result::Ok();
     return out;
   }
@@ -887,20 +953,71 @@ class CompositeOperations {
     return o;
   }
 
+  /// Edges from the vertices `from` to the nearer of a and b (breadth-first, at most `limit`
+  /// rings; limit + 1 when further). O(limit^2) on a lattice.
+  int HopsTo(const std::vector<int>& from, int a, int b, int limit) {
+    std::unordered_map<int, int> d;
+    std::vector<int> q;
+    for (int f : from)
+      if (ed_.IsLive(f) && d.emplace(f, 0).second) q.push_back(f);
+    for (size_t i = 0; i < q.size(); ++i) {
+      const int v = q[i], dv = d[v];
+      if (v == a || v == b) return dv;
+      if (dv >= limit) continue;
+      for (auto* n : ed_.Star(v).neighbors) {
+        const int w = ed_.Index(n);
+        if (d.emplace(w, dv + 1).second) q.push_back(w);
+      }
+    }
+    return limit + 1;
+  }
+
+  /// Moves the pair `spacing` atomic steps away from the vertices `keep` (the vertex it was
+  /// generated next to, or the other pair), never toward them: each step goes to a position
+  /// at least as many edges from them as before, preferring more edges, then the larger
+  /// distance in space; the first choice's direction is repeated while it qualifies (a
+  /// straight line, fig. 6). Fails, without moving back, when every qualifying move is blocked.
   bool MoveApart(CompositeOutcome& out, int& p5, int& p7, int anchor, int spacing) {
     return MoveApart(out, p5, p7, ed_.V(anchor)->P(), spacing, {anchor});
   }
   bool MoveApart(CompositeOutcome& out, int& p5, int& p7, CoordType anchor, int spacing, const std::vector<int>& keep) {
+    const int limit = spacing + 4;
+    auto kept = [&]() {
+      for (int k : keep)
+        if (!ed_.IsLive(k) || (ed_.Valence(k) != 5 && ed_.Valence(k) != 7)) return false;
+      return true;
+    };
+    // (edges from the kept vertices to each vertex of the pair, summed; distance in space)
+    auto where = [&](int a, int b) {
+      return std::make_pair(HopsTo(keep, a, a, limit) + HopsTo(keep, b, b, limit), double((Mid(a, b) - anchor).Norm()));
+    };
+    int lastDir = -1;
     for (int s = 0; s < spacing; ++s) {
-      AtomicOutcome o = BestMove(p5, p7, [&](const AtomicOutcome& c) {
-        for (int k : keep)
-          if (!ed_.IsLive(k) || (ed_.Valence(k) != 5 && ed_.Valence(k) != 7)) return -1.0;
-        return double((Mid(c.irregular[0], c.irregular[1]) - anchor).Norm());
-      }, -0.5, "");
-      if (!o) {
-        out.result = Result::Fail(Str("the generated pair cannot move further apart after ", s, " of ", spacing, " steps"));
+      const auto here = where(p5, p7);
+      int best = -1;
+      std::pair<int, double> bestAt(here.first, -1.0);
+      for (int dir = 0; dir < 6; ++dir) {
+        auto cp = ed_.Mark();
+        AtomicOutcome c = ops_.MovePair57(p5, p7, dir);
+        if (c && kept()) {
+          const auto at = where(c.irregular[0], c.irregular[1]);
+          const bool straight = dir == lastDir && at.first > here.first;
+          const bool straightChosen = best >= 0 && best == lastDir;
+          if (at.first >= here.first && (straight || (!straightChosen && at > bestAt))) bestAt = at, best = dir;
+        }
+        ed_.RollbackTo(cp);
+      }
+      if (best < 0) {
+        out.result = Result::Fail(Str("the generated pair cannot move further apart after ", s, " of ", spacing,
+                                      " steps (every move that does not come back closer is blocked)"));
         return false;
       }
+      AtomicOutcome o = ops_.MovePair57(p5, p7, best);
+      if (!o) {
+        out.result = o.result;
+        return false;
+      }
+      lastDir = best;
       ++out.atomicSteps;
       p5 = o.irregular[0];
       p7 = o.irregular[1];
