@@ -267,6 +267,12 @@ TEST(Generation, QuadrupleOfAGivenShapeAndItsCancellation) {
     std::map<int, int> expect{{g.pair5, 5}, {g.pair7, 7}, {b5, 5}, {b7, 7}};
     EXPECT_EQ(Irregular(m), expect);
     EXPECT_TRUE(CheckInvariants(m).ok) << CheckInvariants(m).reason;
+    if (sh.y == 0) {  // a straight translation: fig. 11's polygon has sides (1, 0) and (x + 1 or x, 0)
+      SeparatrixTracer<TMesh> tracer(m);
+      QuadruplePolygon P = tracer.Polygon(g.irregular, 100);
+      ASSERT_TRUE(P.result.ok) << P.result.reason;
+      EXPECT_TRUE(P.OppositeSidesMatch()) << P.Sides();
+    }
     CompositeOutcome back = co.CancelQuadruple(g.irregular);
     EXPECT_TRUE(back) << back.result.reason << "\n" << back.log;
     if (back) {
