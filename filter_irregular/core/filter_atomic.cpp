@@ -7,6 +7,7 @@
 #include "filters.h"
 
 #include <vcg_ext/irregular/atomic_ops.h>
+#include <vcg_ext/irregular/impossibility.h>
 #include <vcg_ext/irregular/relaxation.h>
 
 namespace irr = vcg_ext::irregular;
@@ -89,7 +90,7 @@ FilterOutcome ApplyAtomic(FilterContext& ctx, const ParamValues& par) {
   switch (op) {
     case 0: {  // 5-7 pair move
       if (sel.size() == 1 && (ed.Valence(sel[0]) == 5 || ed.Valence(sel[0]) == 7))
-        return FilterOutcome::Refuse(irr::ImpossibleRequest::MoveSingleVertex());
+        return FilterOutcome::Refuse(irr::ImpossibilityCheck<CMeshO>(m).SingleVertexMove(sel[0]).message);
       if (!need(2, "A 5-7 pair move")) return FilterOutcome::Refuse(wrongCount);
       int a = sel[0], b = sel[1];
       if (ed.Valence(a) == 7) std::swap(a, b);
@@ -114,7 +115,7 @@ FilterOutcome ApplyAtomic(FilterContext& ctx, const ParamValues& par) {
     }
     case 2:
       if (sel.size() == 2 && valences(sel) == std::vector<int>{5, 7})
-        return FilterOutcome::Refuse(irr::ImpossibleRequest::CancelPair57());
+        return FilterOutcome::Refuse(irr::ImpossibilityCheck<CMeshO>(m).PairCancellation(sel[0], sel[1]).message);
       if (!need(3, "A triple cancellation")) return FilterOutcome::Refuse(wrongCount);
       out = ops.MoveWithPairRemoval(sel);
       break;
@@ -131,7 +132,7 @@ FilterOutcome ApplyAtomic(FilterContext& ctx, const ParamValues& par) {
     }
     case 5:
       if (sel.size() == 2 && valences(sel) == std::vector<int>{5, 7})
-        return FilterOutcome::Refuse(irr::ImpossibleRequest::CancelPair57());
+        return FilterOutcome::Refuse(irr::ImpossibilityCheck<CMeshO>(m).PairCancellation(sel[0], sel[1]).message);
       if (!need(4, "A 5-5-7-7 removal")) return FilterOutcome::Refuse(wrongCount);
       out = ops.RemoveQuadruple(sel);
       break;

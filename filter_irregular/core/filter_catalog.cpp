@@ -316,13 +316,25 @@ std::vector<FilterSpec> MakeCatalog() {
   f.classes = kRemeshing | kSelection;
   f.info =
       "Generation (sec. 7.3), the inverse of cancellation: the selected v5 (v7) becomes a 5-5-7 (5-7-7) triple, or "
-      "the selected regular vertex a 5-5-7-7 quadruple; the generated 5-7 pair is then moved 'spacing' steps away.";
+      "the selected regular vertex a 5-5-7-7 quadruple; the generated 5-7 pair is then moved 'spacing' steps away "
+      "(each step strictly further away). A quadruple can instead be given its shape (fig. 11): the moved pair makes "
+      "exactly 'side 1' steps in pair direction 'side 1 direction', then 'side 2' steps in 'side 2 direction', so "
+      "the four vertices span a parallelogram whose opposite sides match and Cancel Quadruple can undo it.";
   f.params = {
       Enum("kind", 0, {"Triple from a v5 or v7", "Quadruple from a regular vertex"}, "Generate",
            "What the selected vertex becomes."),
       Int("direction", 0, 0, kMaxDirection, "Direction",
           "Neighbour index, counted counter-clockwise from the neighbour of smallest index."),
-      Int("spacing", 2, 0, 100000, "Spacing", "Steps the generated 5-7 pair moves away."),
+      Int("spacing", 2, 0, 100000, "Spacing", "Steps the generated 5-7 pair moves away (shape 'Move apart')."),
+      Enum("shape", 0, {"Move apart", "Parallelogram (quadruple)"}, "Shape",
+           "Move apart: the pair moves 'spacing' steps, each the one taking it furthest away. Parallelogram: a "
+           "quadruple's pair moves exactly 'side 1' steps then 'side 2' steps along the pair directions given."),
+      Int("side1Direction", 4, 0, 5, "Side 1 direction",
+          "Parallelogram: pair direction of the first side (0..5 counter-clockwise around the v5 from the v7, as in "
+          "'Atomic Operation')."),
+      Int("side1", 3, 0, 100000, "Side 1", "Parallelogram: steps along the first side."),
+      Int("side2Direction", 1, 0, 5, "Side 2 direction", "Parallelogram: pair direction of the second side."),
+      Int("side2", 0, 0, 100000, "Side 2", "Parallelogram: steps along the second side."),
       RelaxAfterEditing(),
       Colorize(),
   };

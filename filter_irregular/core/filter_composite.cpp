@@ -9,6 +9,7 @@
 #include "filters.h"
 
 #include <vcg_ext/irregular/composite_ops.h>
+#include <vcg_ext/irregular/impossibility.h>
 
 namespace irr = vcg_ext::irregular;
 
@@ -33,7 +34,18 @@ struct CompositeFrame {
     std::sort(d.begin(), d.end());
     return d;
   }
-  bool IsLonePair57() const { return sel.size() == 2 && Valences(sel) == std::vector<int>{5, 7}; }
+  /// Two selected vertices of opposite curvature (valences adding up to 12: 5-7, 4-8, 3-9).
+  bool IsOppositePair() const {
+    if (sel.size() != 2) return false;
+    const std::vector<int> d = Valences(sel);
+    return d[0] + d[1] == 12 && d[0] != 6;
+  }
+  /// Theorem 5.5 decided on its condition (impossibility.h): the theorem, or the triple
+  /// cancellation that a nearby third vertex makes possible.
+  std::string PairCancellationAnswer() const {
+    irr::ImpossibilityCheck<CMeshO> check(m);
+    return check.PairCancellation(sel[0], sel[1]).message;
+  }
   /// Empty if `n` vertices are selected, else the refusal.
   std::string NeedCount(size_t n, const char* what) const {
     if (sel.size() == n) return std::string();
@@ -69,7 +81,7 @@ FilterOutcome RunComposite(FilterContext& ctx, const ParamValues& par, const cha
   // made regular by a later one (Reduce reduces the ends of its own splits).
   for (auto& v : m.vert) v.ClearS();
   for (int v : out.irregular)
-    if (ed.IsLive(v) && ed.Valence(v) != (ed.IsBoundary(v) ? 4 : 6)) m.vert[size_t(v)].SetS();
+    if (ed.IsLive(v) && ed.Valence(v) != irr::RegularValenceOf(ed.Star(v))) m.vert[size_t(v)].SetS();
   FinishEdit(m);
   ctx.Logf("%s: %d atomic steps", what, out.atomicSteps);
   if (!out.log.empty() && out.atomicSteps <= 50) ctx.Logf("Steps:\n%s", out.log.c_str());
@@ -140,7 +152,10 @@ FilterOutcome ApplyAggregate(FilterContext& ctx, const ParamValues& par) {
 
 FilterOutcome ApplyMovePair(FilterContext& ctx, const ParamValues& par) {
   return RunComposite(ctx, par, "Irregular Vertices: Move Pair", [&](CompositeFrame& f) {
-    if (f.sel.size() == 1) return Refused(irr::ImpossibleRequest::MoveSingleVertex());
+    if (f.sel.size() == 1) {  // Theorem 5.1 on its condition: the theorem, or a partner to pair with
+      irr::ImpossibilityCheck<CMeshO> check(f.m);
+      return Refused(check.SingleVertexMove(f.sel[0]).message);
+    }
     const std::string count = f.NeedCount(2, "Moving a pair");
     if (!count.empty()) return Refused(count);
     int lead = f.sel[0], partner = f.sel[1];
@@ -159,7 +174,7 @@ FilterOutcome ApplyMovePair(FilterContext& ctx, const ParamValues& par) {
 
 FilterOutcome ApplyCancelTriple(FilterContext& ctx, const ParamValues& par) {
   return RunComposite(ctx, par, "Irregular Vertices: Cancel Triple", [&](CompositeFrame& f) {
-    if (f.IsLonePair57()) return Refused(irr::ImpossibleRequest::CancelPair57());
+    if (f.IsOppositePair()) return Refused(f.PairCancellationAnswer());
     const std::string count = f.NeedCount(3, "A triple cancellation");
     if (!count.empty()) return Refused(count);
     return f.ops.CancelTriple(f.sel);
@@ -168,7 +183,7 @@ FilterOutcome ApplyCancelTriple(FilterContext& ctx, const ParamValues& par) {
 
 FilterOutcome ApplyCancelQuadruple(FilterContext& ctx, const ParamValues& par) {
   return RunComposite(ctx, par, "Irregular Vertices: Cancel Quadruple", [&](CompositeFrame& f) {
-    if (f.IsLonePair57()) return Refused(irr::ImpossibleRequest::CancelPair57());
+    if (f.IsOppositePair()) return Refused(f.PairCancellationAnswer());
     const std::string count = f.NeedCount(4, "A quadruple cancellation");
     if (!count.empty()) return Refused(count);
     return f.ops.CancelQuadruple(f.sel);
@@ -180,6 +195,12 @@ FilterOutcome ApplyGenerate(FilterContext& ctx, const ParamValues& par) {
     const std::string count = f.NeedCount(1, "Generation");
     if (!count.empty()) return Refused(count);
     const int dir = par.Int("direction"), spacing = par.Int("spacing");
+    if (par.Enum("shape") == 1) {
+      if (par.Enum("kind") == 0)
+        return Refused("The parallelogram shape is for a quadruple (generate it from a regular vertex).");
+      return f.ops.GenerateQuadrupleShape(f.sel[0], dir, par.Int("side1Direction"), par.Int("side1"),
+                                          par.Int("side2Direction"), par.Int("side2"));
+    }
     return par.Enum("kind") == 0 ? f.ops.GenerateTriple(f.sel[0], dir, spacing)
                                  : f.ops.GenerateQuadruple(f.sel[0], dir, spacing);
   });

@@ -249,6 +249,7 @@ TEST(Composite, QuadrupleCancellationFollowsTheSeparatrixPathAroundATurn) {
       if (o2) {
         ++cases;
         const int dist = GraphDistance(m, o2.irregular, {b5, b7});
+
         CompositeOutcome c = co.CancelQuadruple({o2.irregular[0], o2.irregular[1], b5, b7});
         ASSERT_TRUE(c) << d1 << " " << d2 << ": " << c.result.reason << "\n" << c.log;
         EXPECT_TRUE(FaceValenceIrregular(m).empty());

@@ -139,3 +139,21 @@ TEST_F(SeparatrixOnTorus, IrregularVertexOnTheWayIsNotATurnPoint) {
   for (int v : p.Vertices())
     if (v != g(5, 5) && v != g(10, 19)) EXPECT_EQ(ed.Valence(v), 6);
 }
+
+// Fig. 11's polygon (sec. 7.3): the quadruple a flip generates on the torus (fig. 8) is the
+// smallest one: four sides of one edge, opposite sides matching, the four vertices in cyclic
+// order. (Translated pairs: Generation.QuadrupleOfAGivenShapeAndItsCancellation.)
+TEST_F(SeparatrixOnTorus, QuadruplePolygonOfAGeneratedQuadrupleHasFourUnitSides) {
+  // flip (10, 20)-(11, 20): (10, 20), (11, 20) -> v5; (11, 21), (10, 19) -> v7
+  FlipI(10, 20);
+  const int a5 = g(10, 20), a7 = g(10, 19);
+  const int b5 = g(11, 20), b7 = g(11, 21);
+  ASSERT_EQ(ed.Valence(a5), 5);
+  ASSERT_EQ(ed.Valence(a7), 7);
+  QuadruplePolygon P0 = t.Polygon({a5, a7, b5, b7}, 50);
+  ASSERT_TRUE(P0.result.ok) << P0.result.reason;
+  EXPECT_TRUE(P0.OppositeSidesMatch()) << P0.Sides();
+  std::set<int> order(P0.order, P0.order + 4);
+  EXPECT_EQ(order, (std::set<int>{a5, a7, b5, b7}));
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(P0.x[i] + P0.y[i], 1) << P0.Sides();  // four edges of one
+}

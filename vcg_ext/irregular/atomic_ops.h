@@ -31,9 +31,9 @@
 // and checks it after the edit; it refuses (and rolls back) if the neighbourhood is not the
 // one the semantics need (e.g. a vertex that must be regular is not).
 //
-// What cannot be done (paper sec. 5) is refused with the theorem, never attempted:
-// a single irregular vertex cannot move alone (Theorem 5.1) and a 5-7 pair cannot cancel
-// (Theorem 5.5); see ImpossibleRequest().
+// What cannot be done (paper sec. 5: a single irregular vertex cannot move alone, Theorem 5.1;
+// a 5-7 pair cannot cancel, Theorem 5.5) is decided on the theorems' conditions by
+// impossibility.h, never attempted.
 #pragma once
 
 #include <algorithm>
@@ -96,21 +96,6 @@ struct AtomicPrediction : AtomicRoles {
   double angle = 0;     ///< direction of the move in degrees from the reference (directions.h)
   int sector = -1;      ///< sector 0..5 of that angle
   explicit operator bool() const { return result.ok; }
-};
-
-/// Sec. 5: the messages for requests that are impossible in any triangulation.
-struct ImpossibleRequest {
-  static std::string MoveSingleVertex() {
-    return "A single irregular vertex cannot be moved alone: in a convex region around it, the "
-           "distances to the sides of the boundary determine its position uniquely when its valence "
-           "is not a multiple of 6 (Li et al., Theorem 5.1). Move it together with a partner "
-           "(a 5-7 pair), or use 'move with 5-7 pair generation', which moves it and leaves a 5-7 pair.";
-  }
-  static std::string CancelPair57() {
-    return "A 5-7 pair cannot be cancelled: no retriangulation of a convex region around it is free of "
-           "irregular vertices (Li et al., Theorem 5.5). Cancel triples instead (5-5-7 into one v5, "
-           "5-7-7 into one v7) or 5-5-7-7 quadruples.";
-  }
 };
 
 template <class MeshType>

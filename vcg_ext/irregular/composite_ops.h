@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "atomic_ops.h"
+#include "attribute_transfer.h"
 #include "relaxation.h"
 #include "separatrix.h"
 #include "type_change.h"
@@ -43,9 +44,18 @@ struct CompositeOptions {
 
 struct CompositeOutcome {
   Result result = Result::Fail("not applied");
-  std::vector<int> irregular;  ///< the irregular vertices the operation leaves
+  std::vector<int> irregular;  ///< the irregular vertices the operation leaves (every caller's
+                               ///< list; the named fields below say which is which)
   int atomicSteps = 0;         ///< atomic operations applied
   std::string log;             ///< one line per step
+  // Named results (-1 when the operation does not produce them):
+  int lead = -1;      ///< pair movement: where the lead vertex ended
+  int partner = -1;   ///< pair movement: where the partner ended
+  int survivor = -1;  ///< triple cancellation: the vertex left (a v5 for 5-5-7, a v7 for 5-7-7);
+                      ///< triple generation: the moved v5 / v7
+  int pair5 = -1, pair7 = -1;  ///< generation: the generated 5-7 pair (triple), or the pair that
+                               ///< moved away (quadruple)
+  int other5 = -1, other7 = -1;  ///< quadruple generation: the pair that stayed
   explicit operator bool() const { return result.ok; }
 };
 
@@ -177,8 +187,20 @@ class CompositeOperations {
 
   /// Moves a pair (5-7, 5-5 or 7-7; adjacent or not) one step per repetition with the
   /// pipeline of sec. 7.1.1: `lead` moves one step toward its neighbour k (counted from the
-  /// neighbour of smallest index) generating a 5-7 pair, the pair is transported to
+  /// neighbour of smallest index; as in MoveWithPairGeneration a v5 lands on neighbour k, a
+  /// v7 on neighbour k + 1) generating a 5-7 pair, the pair is transported to
   /// `partner` and cancelled there, moving the partner one step.
+  /// Which step the partner makes is chosen, among the cancellations the triple admits (and
+  /// the two readings of the lead's flip, fig. 7), so that
+  ///  * a 5-7 pair translates (sec. 7.1.1: "the relative position of the two vertices remains
+  ///    the same"): the connecting path from the lead to the partner keeps its two segment
+  ///    lengths and its turn, and the partner steps the way the lead stepped;
+  ///  * a 5-5 or 7-7 pair moves symmetrically (sec. 7.1.2: Δd1 = Δd3, Δd2 = Δd4): the partner
+  ///    makes the mirrored step, opposite to the lead's.
+  /// The step direction is compared on the surface (the two displacement vectors, at most a
+  /// few edges of parallel transport apart on the connecting path). Refused, with the mesh
+  /// unchanged, when no choice realises the translation of a 5-7 pair.
+  /// out.lead / out.partner: where the two vertices ended. O(steps * L).
   CompositeOutcome MovePair(int lead, int partner, int k, int steps) {
     CompositeOutcome out;
     auto cp = ed_.Mark();
@@ -189,34 +211,31 @@ class CompositeOperations {
       return Fail(out, cp, "pair movement works on v5 and v7 (reduce other valences first with 'Reduce to Valence 5 and 7')");
     if (dl != dp && ed_.Adjacent(lead, partner)) {
       const int v5 = dl == 5 ? lead : partner, v7 = dl == 5 ? partner : lead;
-      return MoveAdjacentPair57(v5, v7, ((k % 6) + 6) % 6, steps);
+      out = MoveAdjacentPair57(v5, v7, ((k % 6) + 6) % 6, steps);
+      if (out) out.lead = dl == 5 ? out.irregular[0] : out.irregular[1], out.partner = dl == 5 ? out.irregular[1] : out.irregular[0];
+      return out;
     }
     for (int s = 0; s < steps; ++s) {
       Progress(100 * s / std::max(1, steps), "Moving the pair");
-      // (1) the lead moves one step and generates an adjacent 5-7 pair
-      AtomicOutcome g = ops_.MoveWithPairGeneration(lead, ((k % ed_.Valence(lead)) + ed_.Valence(lead)) % ed_.Valence(lead));
-      if (!g) return Fail(out, cp, Str("step ", s + 1, ": the lead vertex cannot move that way: ", g.result.reason));
-      ++out.atomicSteps;
-      Step(out, g.description, g.irregular);
-      const int movedLead = g.irregular[0];
-      int p5 = -1, p7 = -1;
-      for (size_t i = 1; i < g.irregular.size(); ++i)
-        (ed_.Valence(g.irregular[i]) == 5 ? p5 : p7) = g.irregular[i];
-      // (2)+(3) transport the generated pair to the partner and cancel the triple there
-      int newPartner = -1;
-      Result t = TransportAndCancel(out, p5, p7, partner, &newPartner);
-      if (!t) return Fail(out, cp, Str("step ", s + 1, ": ", t.reason));
-      lead = movedLead;
-      partner = newPartner;
+      Result r = PipelineStep(out, lead, partner, k);
+      if (!r) return Fail(out, cp, Str("step ", s + 1, " of ", steps, ": ", r.reason));
     }
     out.irregular = {lead, partner};
+    out.lead = lead;
+    out.partner = partner;
     out.result = Result::Ok();
     return out;
   }
 
   // ------------------------------------------------------------ cancellation (sec. 7.2, 7.3)
-  /// Cancels a 5-5-7 triple into one v5 or a 5-7-7 triple into one v7. The triple needs an
-  /// adjacent 5-7 pair; that pair is transported to the third vertex.
+  /// Cancels a 5-5-7 triple into one v5 or a 5-7-7 triple into one v7 (sec. 7.2). Let v be
+  /// the vertex of the odd valence (the v7 of 5-5-7), u the other vertex nearer to it, w the
+  /// third one:
+  ///  (1) the 5-7 pair (u, v) moves toward w (adjacent: atomic moves, fig. 6; not adjacent:
+  ///      the pipeline of sec. 7.1.1, translating the pair) until v is adjacent to w;
+  ///  (2) the adjacent 5-7 pair (v, w) moves toward u until the atomic removal applies;
+  ///  (3) the atomic v5 (v7) movement and 5-7 removal leaves one vertex: out.survivor.
+  /// So three mutually non-adjacent vertices can be cancelled. All or nothing.
   CompositeOutcome CancelTriple(const std::vector<int>& triple) {
     CompositeOutcome out;
     auto cp = ed_.Mark();
@@ -230,32 +249,32 @@ class CompositeOperations {
     std::sort(sd.begin(), sd.end());
     if (sd != std::vector<int>{5, 5, 7} && sd != std::vector<int>{5, 7, 7})
       return Fail(out, cp, "a triple cancellation needs a 5-5-7 or a 5-7-7 triple");
-    // already adjacent enough?
-    {
-      AtomicOutcome r = ops_.MoveWithPairRemoval(triple);
-      if (r) {
-        ++out.atomicSteps;
-        Step(out, r.description, r.irregular);
-        out.irregular = r.irregular;
-        out.result = Result::Ok();
-        return out;
-      }
+    if (Finish3(out, triple)) return out;
+    const int odd = sd[1] == 5 ? 7 : 5;
+    int v = -1;
+    std::vector<int> same;
+    for (int x : triple) {
+      if (v < 0 && ed_.Valence(x) == odd) v = x;
+      else same.push_back(x);
     }
-    // find an adjacent 5-7 pair in the triple; the third vertex is the target
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) {
-        if (i == j || d[size_t(i)] != 5 || d[size_t(j)] != 7 || !ed_.Adjacent(triple[size_t(i)], triple[size_t(j)]))
-          continue;
-        const int third = triple[size_t(3 - i - j)];
-        int survivor = -1;
-        Result t = TransportAndCancel(out, triple[size_t(i)], triple[size_t(j)], third, &survivor);
-        if (!t) return Fail(out, cp, t.reason);
-        out.irregular = {survivor};
-        out.result = Result::Ok();
-        return out;
-      }
-    return Fail(out, cp, "no two vertices of the triple form an adjacent 5-7 pair: move two of them together first "
-                         "(Move Pair), then cancel");
+    if (same.size() != 2) return Fail(out, cp, "internal: the triple has no vertex of the odd valence");
+    auto dist = [&](int a, int b) { return double((ed_.V(a)->P() - ed_.V(b)->P()).Norm()); };
+    int u = same[0], w = same[1];
+    if (ed_.Adjacent(v, w) || (!ed_.Adjacent(v, u) && dist(v, w) < dist(v, u))) std::swap(u, w);
+    // now u is adjacent to v, or (neither adjacent) the nearer one
+    if (!ed_.Adjacent(v, w)) {
+      // phase 1: the pair (u, v) travels to w
+      Result r = ed_.Adjacent(u, v) ? MoveAdjacentPairNextTo(out, u, v, w) : MovePairNextTo(out, u, v, w);
+      if (!r) return Fail(out, cp, Str("moving the 5-7 pair (", u, ", ", v, ") to vertex ", w, ": ", r.reason));
+      if (out.survivor >= 0) return Done3(out);
+    }
+    // phase 2: the adjacent pair (v, w) travels to u and the triple cancels there
+    int p5 = ed_.Valence(v) == 5 ? v : w, p7 = p5 == v ? w : v;
+    int survivor = -1;
+    Result t = TransportAndCancel(out, p5, p7, u, &survivor);
+    if (!t) return Fail(out, cp, t.reason);
+    out.survivor = survivor;
+    return Done3(out);
   }
 
   /// Cancels a 5-5-7-7 quadruple made of two adjacent 5-7 pairs: one pair is transported to
@@ -272,6 +291,12 @@ class CompositeOperations {
       if (ed_.Valence(v) != 5 && ed_.Valence(v) != 7) return Fail(out, cp, "a quadruple is two v5 and two v7");
     }
     if (v5.size() != 2) return Fail(out, cp, "a quadruple is two v5 and two v7");
+    const std::vector<int> quad0 = quad;
+    // fig. 11's polygon of the quadruple as selected, reported when the cancellation fails
+    // (measured on the mesh, whose other irregular vertices bend the straight paths, so it
+    // explains a failure rather than predicting one)
+    SeparatrixTracer<MeshType> tracer(ed_.Mesh());
+    const QuadruplePolygon before = tracer.Polygon(quad0, opt_.maxTransportSteps);
     {
       AtomicOutcome r = ops_.RemoveQuadruple(quad);
       if (r) {
@@ -298,9 +323,67 @@ class CompositeOperations {
       out.result = Result::Ok();
       return out;
     }
+    // Say what happened: the pairs met and do not annihilate (fig. 11's condition), or the
+    // transport was blocked or hit the step cap before they met.
+    bool met = false;
+    for (int x : {a5, a7})
+      for (int y : {b5, b7}) met = met || (ed_.IsLive(x) && ed_.IsLive(y) && (x == y || ed_.Adjacent(x, y)));
+    const std::string sides = before.result.ok ? " The connecting paths of the quadruple as selected, (x_i, y_i) = " +
+                                           before.Sides() +
+                                           (before.OppositeSidesMatch() ? ", do match on opposite sides."
+                                                                        : ", do not match on opposite sides.")
+                                     : std::string();
+    if (!met)
+      return Fail(out, cp, "the 5-7 pair (" + Str(quad0[0]) + "...) could not be brought to the other pair: " + t.reason +
+                               "." + sides);
     return Fail(out, cp, "the two 5-7 pairs met but do not annihilate (" + t.reason +
-                             "): they are not in the configuration of fig. 11 (sec. 7.3: a 5-7 pair and its mirror "
-                             "image cancel; two pairs with the same orientation do not)");
+                             "): they are not in the configuration of fig. 11 (sec. 7.3: the four connecting paths must "
+                             "form a polygon whose opposite sides match, x_i = x_{i+2}, y_i = y_{i+2}; otherwise one 5-7 "
+                             "pair could be removed alone, which Theorem 5.5 forbids)." + sides);
+  }
+
+  // ------------------------------------------------------------ generation with a shape
+  /// Moves the adjacent 5-7 pair exactly `steps` times by the same atomic move `dir` (fig. 6:
+  /// repeating a move parallel-transports the pair along a straight line); fails, without
+  /// substituting another move, where that move is blocked.
+  Result MoveStraight(CompositeOutcome& out, int& p5, int& p7, int dir, int steps) {
+    for (int s = 0; s < steps; ++s) {
+      AtomicOutcome o = ops_.MovePair57(p5, p7, dir);
+      if (!o) return Result::Fail(Str("step ", s + 1, " of ", steps, " in direction ", dir, ": ", o.result.reason));
+      ++out.atomicSteps;
+      p5 = o.irregular[0];
+      p7 = o.irregular[1];
+      Step(out, o.description, {p5, p7});
+    }
+    return Result::Ok();
+  }
+
+  /// Sec. 7.3, fig. 11: a regular vertex becomes a 5-5-7-7 quadruple (atomic flip, fig. 8)
+  /// whose second 5-7 pair is then placed exactly: `x` atomic steps in pair direction dirX,
+  /// then `y` in direction dirY (atomic_ops.h's pair directions, 0..5 around the v5 from the
+  /// v7). The four vertices then span the parallelogram of fig. 11 with sides (x, y) and the
+  /// pair's edge, whose opposite sides match by construction, so CancelQuadruple can undo it.
+  /// out.pair5/pair7: the moved pair; out.other5/other7: the pair that stayed.
+  CompositeOutcome GenerateQuadrupleShape(int v, int k, int dirX, int x, int dirY, int y) {
+    CompositeOutcome out;
+    auto cp = ed_.Mark();
+    AtomicOutcome g = ops_.GenerateQuadruple(v, k, false);
+    if (!g) return Fail(out, cp, g.result.reason);
+    ++out.atomicSteps;
+    Step(out, g.description, g.irregular);
+    // g.irregular = {p, n_k, n_k-1, n_k+1}: pairs (p, n_k-1) and (n_k, n_k+1)
+    int a5 = g.irregular[0], a7 = g.irregular[2];
+    const int b5 = g.irregular[1], b7 = g.irregular[3];
+    Result r = MoveStraight(out, a5, a7, dirX, x);
+    if (r) r = MoveStraight(out, a5, a7, dirY, y);
+    if (!r) return Fail(out, cp, Str("placing the generated 5-7 pair: ", r.reason));
+    for (int keep : {b5, b7})
+      if (!ed_.IsLive(keep) || (ed_.Valence(keep) != 5 && ed_.Valence(keep) != 7))
+        return Fail(out, cp, "the moved pair ran into the pair that stayed: choose other directions or longer sides");
+    out.irregular = {a5, a7, b5, b7};
+    out.pair5 = a5, out.pair7 = a7, out.other5 = b5, out.other7 = b7;
+    out.result = Result::Ok();
+    return out;
   }
 
   // ------------------------------------------------------------ generation (sec. 7.3)
@@ -317,6 +400,7 @@ class CompositeOperations {
     for (size_t i = 1; i < g.irregular.size(); ++i) (ed_.Valence(g.irregular[i]) == 5 ? p5 : p7) = g.irregular[i];
     if (!MoveApart(out, p5, p7, g.irregular[0], spacing)) return Fail(out, cp, out.result.reason);
     out.irregular = {g.irregular[0], p5, p7};
+    out.survivor = g.irregular[0], out.pair5 = p5, out.pair7 = p7;
     out.result = Result::Ok();
     return out;
   }
@@ -334,6 +418,7 @@ class CompositeOperations {
     int a5 = g.irregular[0], a7 = g.irregular[2], b5 = g.irregular[1], b7 = g.irregular[3];
     if (!MoveApart(out, a5, a7, Mid(b5, b7), spacing, {b5, b7})) return Fail(out, cp, out.result.reason);
     out.irregular = {a5, a7, b5, b7};
+    out.pair5 = a5, out.pair7 = a7, out.other5 = b5, out.other7 = b7;
     out.result = Result::Ok();
     return out;
   }
@@ -375,7 +460,10 @@ class CompositeOperations {
     for (int v : ring) ed_.journal().SaveVertex(ed_.V(v));
     for (int v : ring)
       for (auto& c : ed_.Star(v).corners) ed_.journal().SaveFace(c.f);
+    // texture coordinates re-sampled where the vertices moved to (the faces are journaled)
+    AttributeResampler<MeshType> texture(ed_.Mesh(), ring);
     LocalRelax(ed_.Mesh(), ring, original_, ro);
+    texture.Resample();
   }
 
   CoordType Mid(int a, int b) { return (ed_.V(a)->P() + ed_.V(b)->P()) / 2; }
@@ -427,11 +515,250 @@ class CompositeOperations {
        "the 5-7 pair cannot get closer (blocked by irregular vertices, folds, or already as close as it can)");
   }
 
+  // ------------------------------------------------------------ the sec. 7.1.1 pipeline
+  /// Bonus a 5-7 pair's candidate gets when the connecting path keeps its shape (a translation).
+  static constexpr double kShapeKept = 10.0;
+
+  /// The atomic removal of the triple `group` (a 5-7 pair next to a third vertex, fig. 7 read
+  /// backwards) whose survivor passes acceptSurvivor(key): key is the survivor's vertex index,
+  /// or -1 for a vertex a split would create. Same test as AtomicOperations::MoveWithPairRemoval
+  /// (two of the three disappear, one vertex of the survivor's valence is left, no other
+  /// irregular vertex is touched), over flips, collapses and also vertex splits (fig. 7 read
+  /// backwards turns its collapses into splits, sec. 6.2; MoveWithPairRemoval tries no split).
+  AtomicOutcome RemovalWithSurvivor(const std::vector<int>& group, const std::function<bool(int)>& acceptSurvivor) {
+    int n5 = 0;
+    for (int v : group) n5 += ed_.Valence(v) == 5;
+    const int survivorValence = n5 == 2 ? 5 : 7;
+    return ops_.FindAndApply(group, [&](const std::map<int, int>& before, const std::map<int, int>& after) {
+      int irregularBefore = 0, irregularAfter = 0, key = -2;
+      for (auto& kv : after) {
+        const int b = before.count(kv.first) ? before.at(kv.first) : 0;
+        const bool inGroup = std::find(group.begin(), group.end(), kv.first) != group.end();
+        if (b != 6 && b != 0) ++irregularBefore;
+        if (!inGroup && b != 6 && b != 0) return false;
+        if (kv.second != 6 && kv.second != 0) {
+          if (kv.second != survivorValence || key != -2) return false;
+          ++irregularAfter;
+          key = kv.first;
+        }
+      }
+      return irregularBefore - irregularAfter == 2 && key != -2 && acceptSurvivor(key);
+    }, Str(n5 == 2 ? "5-5-7" : "5-7-7", " triple cancelled into one v", survivorValence), true);
+  }
+
+  /// How well the step (lead: leadFrom -> newLead, partner: partnerFrom -> newPartner) realises
+  /// sec. 7.1: for a 5-7 pair (translate) the cosine between the two displacements, plus
+  /// kShapeKept when the connecting path keeps its segment lengths (and its turn, when they
+  /// differ); for a 5-5 or 7-7 pair minus that cosine (the mirrored step).
+  double StepScore(int newLead, int newPartner, const CoordType& leadFrom, const CoordType& partnerFrom,
+                   const ConnectingPath& before, bool translate) {
+    const CoordType a = ed_.V(newLead)->P() - leadFrom, b = ed_.V(newPartner)->P() - partnerFrom;
+    const double na = double(a.Norm()), nb = double(b.Norm());
+    const double c = na > 0 && nb > 0 ? double(a.dot(b)) / (na * nb) : 0.0;
+    if (!translate) return -c;
+    double sc = c;
+    if (before) {
+      SeparatrixTracer<MeshType> tracer(ed_.Mesh());
+      ConnectingPath after = tracer.Connect(newLead, newPartner, opt_.maxTransportSteps);
+      if (after && after.L1() == before.L1() && after.L2() == before.L2() &&
+          (before.L1() == before.L2() || after.turnTriangles == before.turnTriangles))
+        sc += kShapeKept;
+    }
+    return sc;
+  }
+
+  /// The reading of the lead's flip (fig. 7: the same flip moves the vertex onto either of two
+  /// new irregular vertices): MoveWithPairGeneration(lead, genK), with the lead landing on x.
+  struct LeadFlip {
+    int genK;
+  };
+
+  /// The two flips of fig. 7 that move `lead` onto its neighbour j (index from the reference).
+  std::vector<LeadFlip> LeadFlips(int lead, int j) {
+    const int d = ed_.Valence(lead);
+    auto m = [d](int i) { return ((i % d) + d) % d; };
+    // v5: flip (n_j, n_j+1) or (n_j-1, n_j); v7: flip (p, n_j-1) or (p, n_j+1)
+    if (d == 5) return {LeadFlip{m(j)}, LeadFlip{m(j - 1)}};
+    return {LeadFlip{m(j - 1)}, LeadFlip{m(j + 1)}};
+  }
+
+  /// Sec. 7.1.1 with one reading of the lead's flip: the lead moves onto x, the generated pair
+  /// is transported to the partner, and the cancellation with the best StepScore is applied
+  /// (*score). Leaves the edits applied (the caller rolls back).
+  Result RunPipeline(CompositeOutcome& out, LeadFlip flip, int x, int& lead, int& partner, const ConnectingPath& before,
+                     const CoordType& leadFrom, const CoordType& partnerFrom, bool translate, double* score) {
+    const int dl = ed_.Valence(lead);
+    AtomicOutcome g = ops_.MoveWithPairGeneration(lead, flip.genK);
+    if (!g) return Result::Fail(Str("the lead vertex cannot move that way: ", g.result.reason));
+    ++out.atomicSteps;
+    Step(out, g.description, g.irregular);
+    if (std::find(g.irregular.begin(), g.irregular.end(), x) == g.irregular.end() || ed_.Valence(x) != dl)
+      return Result::Fail("the lead's flip does not move it onto that neighbour");
+    int p5 = -1, p7 = -1;
+    for (int v : g.irregular)
+      if (v != x) (ed_.Valence(v) == 5 ? p5 : p7) = v;
+    if (p5 < 0 || p7 < 0) return Result::Fail("the lead's flip did not leave a 5-7 pair");
+    const int target = partner;
+    int newPartner = -1;
+    double best = -std::numeric_limits<double>::max();
+    Result t = Transport(out, p5, p7, {target}, [&]() {
+      // every cancellation of the triple, each tried and undone; the best one is re-applied
+      const std::vector<int> triple{p5, p7, target};
+      const int firstNew = int(ed_.Mesh().vert.size());
+      std::set<int> tried;
+      int bestKey = -3;
+      for (int guard = 0; guard < 16; ++guard) {
+        auto cp = ed_.Mark();
+        AtomicOutcome r = RemovalWithSurvivor(triple, [&](int key) { return !tried.count(key); });
+        if (!r) break;
+        const int sv = r.irregular.empty() ? -1 : r.irregular[0];
+        const int key = sv >= firstNew ? -1 : sv;
+        const double sc = sv >= 0 && ed_.IsLive(x) ? StepScore(x, sv, leadFrom, partnerFrom, before, translate)
+                                                  : -std::numeric_limits<double>::max();
+        if (sc > best) best = sc, bestKey = key;
+        ed_.RollbackTo(cp);
+        tried.insert(key);
+      }
+      if (bestKey == -3) return false;
+      AtomicOutcome r = RemovalWithSurvivor(triple, [&](int key) { return key == bestKey; });
+      if (!r) return false;
+      ++out.atomicSteps;
+      Step(out, r.description, r.irregular);
+      newPartner = r.irregular.empty() ? -1 : r.irregular[0];
+      return true;
+    });
+    if (!t) return Result::Fail(Str("transporting the generated 5-7 pair to vertex ", target, ": ", t.reason));
+    if (newPartner < 0 || !ed_.IsLive(x) || ed_.Valence(x) != dl)
+      return Result::Fail("the generated pair's transport disturbed the lead vertex");
+    lead = x;
+    partner = newPartner;
+    *score = best;
+    return Result::Ok();
+  }
+
+  /// One step of MovePair (sec. 7.1.1): tries both readings of the lead's flip and keeps the
+  /// one whose cancellation best realises the translation (5-7) or the mirrored step (5-5,
+  /// 7-7). On failure the mesh is as before.
+  Result PipelineStep(CompositeOutcome& out, int& lead, int& partner, int k) {
+    const int dl = ed_.Valence(lead), dp = ed_.Valence(partner);
+    const bool translate = dl != dp;
+    // as MoveWithPairGeneration: a v5 moves onto its neighbour k, a v7 onto neighbour k + 1
+    const int j = (((dl == 7 ? k + 1 : k) % dl) + dl) % dl;
+    const int x = ops_.NeighbourFrom(lead, -1, j);
+    if (x < 0) return Result::Fail(Str("vertex ", lead, " has no neighbour ", j));
+    SeparatrixTracer<MeshType> tracer(ed_.Mesh());
+    const ConnectingPath before = tracer.Connect(lead, partner, opt_.maxTransportSteps);
+    const CoordType leadFrom = ed_.V(lead)->P(), partnerFrom = ed_.V(partner)->P();
+    const std::vector<LeadFlip> flips = LeadFlips(lead, j);
+    int bestFlip = -1;
+    double bestScore = -std::numeric_limits<double>::max();
+    std::string why;
+    for (size_t i = 0; i < flips.size(); ++i) {
+      auto cp = ed_.Mark();
+      CompositeOutcome scratch;
+      int l = lead, p = partner;
+      double sc = 0;
+      Result r = RunPipeline(scratch, flips[i], x, l, p, before, leadFrom, partnerFrom, translate, &sc);
+      ed_.RollbackTo(cp);
+      if (!r) {
+        if (why.empty()) why = r.reason;
+        continue;
+      }
+      if (sc > bestScore) bestScore = sc, bestFlip = int(i);
+    }
+    if (bestFlip < 0) return Result::Fail(why);
+    if (translate && bestScore < kShapeKept + 0.5)
+      return Result::Fail(Str("no cancellation of the generated pair next to vertex ", partner,
+                              " moves it by the lead's step: the 5-7 pair would not keep its relative position "
+                              "(sec. 7.1.1); try another direction or lead with the other vertex"));
+    if (!translate && bestScore < 0.5)
+      return Result::Fail(Str("no cancellation next to vertex ", partner,
+                              " moves it by the mirror image of the lead's step (sec. 7.1.2: a 5-5 or 7-7 pair moves "
+                              "symmetrically); try another direction"));
+    double sc = 0;
+    auto cp = ed_.Mark();
+    const int lead0 = lead, partner0 = partner;
+    Result r = RunPipeline(out, flips[size_t(bestFlip)], x, lead, partner, before, leadFrom, partnerFrom, translate, &sc);
+    if (!r) ed_.RollbackTo(cp), lead = lead0, partner = partner0;
+    return r;
+  }
+
+  // ------------------------------------------------------------ triple cancellation helpers
+  /// Applies the atomic removal when the triple is already close enough; sets out.survivor.
+  bool Finish3(CompositeOutcome& out, const std::vector<int>& triple) {
+    AtomicOutcome r = RemovalWithSurvivor(triple, [](int) { return true; });
+    if (!r) return false;
+    ++out.atomicSteps;
+    Step(out, r.description, r.irregular);
+    out.survivor = r.irregular.empty() ? -1 : r.irregular[0];
+    Done3(out);
+    return true;
+  }
+
+  CompositeOutcome& Done3(CompositeOutcome& out) {
+    out.irregular = out.survivor >= 0 ? std::vector<int>{out.survivor} : std::vector<int>{};
+    out.result = Result::Ok();
+    return out;
+  }
+
+  /// Phase 1 of sec. 7.2 for an adjacent 5-7 pair (u, v): atomic moves toward w until v is
+  /// adjacent to w (or the triple cancels: out.survivor).
+  Result MoveAdjacentPairNextTo(CompositeOutcome& out, int& u, int& v, int w) {
+    for (int s = 0; s < opt_.maxTransportSteps; ++s) {
+      if (ed_.Adjacent(v, w)) return Result::Ok();
+      if (Finish3(out, {u, v, w})) return Result::Ok();
+      int p5 = ed_.Valence(u) == 5 ? u : v, p7 = p5 == u ? v : u;
+      AtomicOutcome o = StepToward(p5, p7, ed_.V(w)->P(), {w});
+      if (!o) return o.result;
+      ++out.atomicSteps;
+      Step(out, o.description, o.irregular);
+      // the pair keeps its roles: the vertex of u's valence is the new u
+      const bool uIs5 = p5 == u;
+      u = uIs5 ? o.irregular[0] : o.irregular[1];
+      v = uIs5 ? o.irregular[1] : o.irregular[0];
+    }
+    return Result::Fail(Str("the pair did not reach vertex ", w, " within ", opt_.maxTransportSteps, " steps"));
+  }
+
+  /// Phase 1 of sec. 7.2 for a non-adjacent 5-7 pair (u, v): pipeline steps (sec. 7.1.1) led
+  /// by v onto its neighbour nearest to w, while that brings v closer, until v is adjacent to
+  /// w (or the triple cancels). O(L) pipeline steps of O(L) each.
+  Result MovePairNextTo(CompositeOutcome& out, int& u, int& v, int w) {
+    for (int s = 0; s < opt_.maxTransportSteps; ++s) {
+      if (ed_.Adjacent(v, w)) return Result::Ok();
+      if (Finish3(out, {u, v, w})) return Result::Ok();
+      if (ed_.Adjacent(u, v)) return MoveAdjacentPairNextTo(out, u, v, w);
+      // v's neighbours closer to w than v, nearest first
+      VertexStar<MeshType> st = ed_.Star(v);
+      const CoordType pw = ed_.V(w)->P();
+      const double here = double((ed_.V(v)->P() - pw).Norm());
+      std::vector<std::pair<double, int>> cand;
+      for (int k = 0; k < st.Valence(); ++k) {
+        const int x = ops_.NeighbourFrom(v, -1, k);
+        const double dx = double((ed_.V(x)->P() - pw).Norm());
+        if (dx < here) cand.push_back({dx, k});
+      }
+      std::sort(cand.begin(), cand.end());
+      Result last = Result::Fail(Str("vertex ", v, " has no neighbour closer to vertex ", w));
+      bool moved = false;
+      for (auto& c : cand) {
+        int l = v, p = u;
+        last = PipelineStep(out, l, p, c.second);
+        if (last) {
+          v = l, u = p, moved = true;
+          break;
+        }
+      }
+      if (!moved) return last;
+    }
+    return Result::Fail(Str("the pair did not reach vertex ", w, " within ", opt_.maxTransportSteps, " steps"));
+  }
+
   /// Transports the 5-7 pair (p5, p7) to `target` and cancels the triple it forms there
   /// (sec. 7.1.1 steps 2-3, sec. 7.2). *survivor: the vertex that remains.
   Result TransportAndCancel(CompositeOutcome& out, int p5, int p7, int target, int* survivor) {
     Result t = Transport(out, p5, p7, {target}, [&]() {
-      AtomicOutcome r = ops_.MoveWithPairRemoval({p5, p7, target});
+      AtomicOutcome r = RemovalWithSurvivor({p5, p7, target}, [](int) { return true; });
       if (!r) return false;
       ++out.atomicSteps;
       Step(out, r.description, r.irregular);
@@ -462,8 +789,24 @@ class CompositeOperations {
         // blocked: one greedy step toward the targets' centroid, then trace the path again
         CoordType c(0, 0, 0);
         for (int t : targets) c += ed_.V(t)->P();
-        o = StepToward(p5, p7, c / float(targets.size()), targets);
-        if (!o) return o.result;
+        c /= float(targets.size());
+        o = StepToward(p5, p7, c, targets);
+        if (!o) {
+          // no single move gets closer (e.g. the pair must go round the vertex it came from):
+          // the shortest sequence of at most kDetourDepth moves that does
+          std::vector<int> dirs = Detour(p5, p7, c, targets);
+          if (dirs.empty()) return o.result;
+          for (size_t i = 0; i + 1 < dirs.size(); ++i) {
+            AtomicOutcome d = ops_.MovePair57(p5, p7, dirs[i]);
+            if (!d) return d.result;
+            ++out.atomicSteps;
+            p5 = d.irregular[0];
+            p7 = d.irregular[1];
+            Step(out, d.description + "  (detour)", {p5, p7});
+          }
+          o = ops_.MovePair57(p5, p7, dirs.back());
+          if (!o) return o.result;
+        }
         out.log += "  (path blocked: greedy step)\n";
         along.clear();
       }
@@ -473,6 +816,43 @@ class CompositeOperations {
       Step(out, o.description, {p5, p7});
     }
     return Result::Fail(Str("the 5-7 pair did not get there within ", opt_.maxTransportSteps, " steps"));
+  }
+
+  static constexpr int kDetourDepth = 5;
+
+  /// The shortest sequence (at most kDetourDepth atomic moves of fig. 6) that brings the
+  /// pair's midpoint closer to `target` by a quarter of its current edge length, never
+  /// removing a vertex of `keep`; ties: the closest end, then the lower directions. Tried and
+  /// undone; empty when there is none. At most 6 + 36 + 216 atomic moves.
+  std::vector<int> Detour(int p5, int p7, CoordType target, const std::vector<int>& keep) {
+    const double start = double((Mid(p5, p7) - target).Norm());
+    const double gain = 0.25 * double((ed_.V(p5)->P() - ed_.V(p7)->P()).Norm());
+    for (int depth = 1; depth <= kDetourDepth; ++depth) {
+      std::vector<int> best, cur;
+      double bestD = start - gain;
+      std::function<void(int, int)> dfs = [&](int a5, int a7) {
+        if (int(cur.size()) == depth) {
+          const double d = double((Mid(a5, a7) - target).Norm());
+          if (d < bestD) bestD = d, best = cur;
+          return;
+        }
+        for (int dir = 0; dir < 6; ++dir) {
+          auto cp = ed_.Mark();
+          AtomicOutcome o = ops_.MovePair57(a5, a7, dir);
+          bool ok = bool(o);
+          for (int k : keep) ok = ok && ed_.IsLive(k) && ed_.Valence(k) != 6;
+          if (ok) {
+            cur.push_back(dir);
+            dfs(o.irregular[0], o.irregular[1]);
+            cur.pop_back();
+          }
+          ed_.RollbackTo(cp);
+        }
+      };
+      dfs(p5, p7);
+      if (!best.empty()) return best;
+    }
+    return {};
   }
 
   /// The shortest connecting path from p5 or p7 to one of `targets`, as vertex -> position;
@@ -516,20 +896,71 @@ class CompositeOperations {
     return o;
   }
 
+  /// Edges from the vertices `from` to the nearer of a and b (breadth-first, at most `limit`
+  /// rings; limit + 1 when further). O(limit^2) on a lattice.
+  int HopsTo(const std::vector<int>& from, int a, int b, int limit) {
+    std::unordered_map<int, int> d;
+    std::vector<int> q;
+    for (int f : from)
+      if (ed_.IsLive(f) && d.emplace(f, 0).second) q.push_back(f);
+    for (size_t i = 0; i < q.size(); ++i) {
+      const int v = q[i], dv = d[v];
+      if (v == a || v == b) return dv;
+      if (dv >= limit) continue;
+      for (auto* n : ed_.Star(v).neighbors) {
+        const int w = ed_.Index(n);
+        if (d.emplace(w, dv + 1).second) q.push_back(w);
+      }
+    }
+    return limit + 1;
+  }
+
+  /// Moves the pair `spacing` atomic steps away from the vertices `keep` (the vertex it was
+  /// generated next to, or the other pair), never toward them: each step goes to a position
+  /// at least as many edges from them as before, preferring more edges, then the larger
+  /// distance in space; the first choice's direction is repeated while it qualifies (a
+  /// straight line, fig. 6). Fails, without moving back, when every qualifying move is blocked.
   bool MoveApart(CompositeOutcome& out, int& p5, int& p7, int anchor, int spacing) {
     return MoveApart(out, p5, p7, ed_.V(anchor)->P(), spacing, {anchor});
   }
   bool MoveApart(CompositeOutcome& out, int& p5, int& p7, CoordType anchor, int spacing, const std::vector<int>& keep) {
+    const int limit = spacing + 4;
+    auto kept = [&]() {
+      for (int k : keep)
+        if (!ed_.IsLive(k) || (ed_.Valence(k) != 5 && ed_.Valence(k) != 7)) return false;
+      return true;
+    };
+    // (edges from the kept vertices to each vertex of the pair, summed; distance in space)
+    auto where = [&](int a, int b) {
+      return std::make_pair(HopsTo(keep, a, a, limit) + HopsTo(keep, b, b, limit), double((Mid(a, b) - anchor).Norm()));
+    };
+    int lastDir = -1;
     for (int s = 0; s < spacing; ++s) {
-      AtomicOutcome o = BestMove(p5, p7, [&](const AtomicOutcome& c) {
-        for (int k : keep)
-          if (!ed_.IsLive(k) || (ed_.Valence(k) != 5 && ed_.Valence(k) != 7)) return -1.0;
-        return double((Mid(c.irregular[0], c.irregular[1]) - anchor).Norm());
-      }, -0.5, "");
-      if (!o) {
-        out.result = Result::Fail(Str("the generated pair cannot move further apart after ", s, " of ", spacing, " steps"));
+      const auto here = where(p5, p7);
+      int best = -1;
+      std::pair<int, double> bestAt(here.first, -1.0);
+      for (int dir = 0; dir < 6; ++dir) {
+        auto cp = ed_.Mark();
+        AtomicOutcome c = ops_.MovePair57(p5, p7, dir);
+        if (c && kept()) {
+          const auto at = where(c.irregular[0], c.irregular[1]);
+          const bool straight = dir == lastDir && at.first > here.first;
+          const bool straightChosen = best >= 0 && best == lastDir;
+          if (at.first >= here.first && (straight || (!straightChosen && at > bestAt))) bestAt = at, best = dir;
+        }
+        ed_.RollbackTo(cp);
+      }
+      if (best < 0) {
+        out.result = Result::Fail(Str("the generated pair cannot move further apart after ", s, " of ", spacing,
+                                      " steps (every move that does not come back closer is blocked)"));
         return false;
       }
+      AtomicOutcome o = ops_.MovePair57(p5, p7, best);
+      if (!o) {
+        out.result = o.result;
+        return false;
+      }
+      lastDir = best;
       ++out.atomicSteps;
       p5 = o.irregular[0];
       p7 = o.irregular[1];

@@ -18,6 +18,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <unordered_map>
 #include <unordered_set>
@@ -64,6 +65,25 @@ struct ConnectingPath {
     return v;
   }
   explicit operator bool() const { return result.ok; }
+};
+
+/// The polygon of a 5-5-7-7 quadruple (sec. 7.3, fig. 11): the four vertices in cyclic order
+/// around their centroid, and side i = the connecting path from vertex i to vertex i+1, of
+/// two straight segments of lengths (x_i, y_i) (x_i >= y_i: the order of the two segments
+/// is not compared). Sec. 7.3: the quadruple can be generated from (cancelled into) a
+/// regular triangulation only if opposite sides match, x_i = x_{i+2} and y_i = y_{i+2};
+/// otherwise one of its 5-7 pairs could be removed alone, which Theorem 5.5 forbids.
+struct QuadruplePolygon {
+  Result result = Result::Fail("not computed");  ///< fails when a side cannot be traced
+  int order[4] = {-1, -1, -1, -1};
+  int x[4] = {0, 0, 0, 0}, y[4] = {0, 0, 0, 0};
+  bool OppositeSidesMatch() const { return x[0] == x[2] && y[0] == y[2] && x[1] == x[3] && y[1] == y[3]; }
+  std::string Sides() const {
+    std::string s;
+    for (int i = 0; i < 4; ++i)
+      s += (i ? ", " : "") + std::string("(") + std::to_string(x[i]) + ", " + std::to_string(y[i]) + ")";
+    return s;
+  }
 };
 
 template <class MeshType>
@@ -134,6 +154,51 @@ class SeparatrixTracer {
     VertexStar<MeshType> s = StarOf<MeshType>(V(v));
     for (VertexType* n : s.neighbors) r.push_back(Trace(v, Index(n), maxLength));
     return r;
+  }
+
+  /// The polygon of fig. 11 for the quadruple q (four distinct vertices): cyclic order by the
+  /// angle around their centroid in the plane of the mean vertex normal, and the (x_i, y_i)
+  /// of the connecting path between consecutive vertices (sides of one edge: (1, 0)).
+  /// O(4 * Connect).
+  QuadruplePolygon Polygon(const std::vector<int>& q, int maxLength) {
+    QuadruplePolygon P;
+    if (q.size() != 4) {
+      P.result = Result::Fail("a quadruple has four vertices");
+      return P;
+    }
+    typedef typename MeshType::CoordType C;
+    C c(0, 0, 0), n(0, 0, 0);
+    for (int v : q) {
+      c += V(v)->P();
+      VertexStar<MeshType> s = StarOf<MeshType>(V(v));
+      for (auto& k : s.corners) n += vcg::TriangleNormal(*k.f);
+    }
+    c /= 4;
+    if (n.Norm() == 0) n = C(0, 0, 1);
+    n.Normalize();
+    C u = V(q[0])->P() - c;
+    u -= n * (u.dot(n));
+    if (u.Norm() == 0) u = C(1, 0, 0);
+    u.Normalize();
+    const C w = n ^ u;
+    std::vector<std::pair<double, int>> ang;
+    for (int v : q) {
+      const C d = V(v)->P() - c;
+      ang.push_back({std::atan2(double(d.dot(w)), double(d.dot(u))), v});
+    }
+    std::sort(ang.begin(), ang.end());
+    for (int i = 0; i < 4; ++i) P.order[i] = ang[size_t(i)].second;
+    for (int i = 0; i < 4; ++i) {
+      ConnectingPath p = Connect(P.order[i], P.order[(i + 1) % 4], maxLength);
+      if (!p) {
+        P.result = p.result;
+        return P;
+      }
+      P.x[i] = std::max(p.L1(), p.L2());
+      P.y[i] = std::min(p.L1(), p.L2());
+    }
+    P.result = Result::Ok();
+    return P;
   }
 
   /// The shortest path from a to b made of a straight segment from a and one from b meeting

@@ -1,0 +1,199 @@
+// Unit tests of the pair movement of sec. 7.1 (vcg_ext/irregular/composite_ops.h): where the
+// two vertices of a pair end up, on a planar lattice patch whose vertices sit at lattice
+// points (relaxation off, so a vertex that only changes valence keeps its lattice position).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <vcg_ext/irregular/composite_ops.h>
+#include <vcg_ext/irregular/mesh_checks.h>
+#include <vcg_ext/irregular/separatrix.h>
+
+#include "test_mesh.h"
+#include "test_util.h"
+#include "composite_test_util.h"
+
+using namespace vcg_ext::irregular;
+using test::TMesh;
+
+namespace {
+using test::Irregular;
+using test::Park;
+typedef vcg::Point3f P3;
+
+/// A planar hexagonal patch (radius 14, unit edges) holding a non-adjacent 5-7 pair (v5, v7)
+/// `separation` edges apart near the centre; every other irregular interior vertex (the
+/// pairs generated while building it) is parked at least 6 edges away. Built with the atomic
+/// operations only (fig. 6, 7), which the composite operations under test build on.
+struct SeparatedPair {
+  TMesh m;
+  int v5 = -1, v7 = -1;
+  void Build(int separation) {
+    test::HexPatch(m, 14);
+    GeometryOptions g;
+    g.checkFolds = false;
+    MeshEditor<TMesh> ed(m, g);
+    AtomicOperations<TMesh> ops(ed);
+    const int n = ed.Index(ed.Star(0).neighbors[0]);
+    int o[2];
+    ASSERT_TRUE(ed.Opposites(0, n, o));
+    ASSERT_TRUE(ed.Flip(0, n).ok);  // 0, n -> v5; o0, o1 -> v7
+    int b5 = n, b7 = o[1];
+    Park(ed, ops, b5, b7, {m.vert[0].P()}, 7);
+    v5 = 0;
+    v7 = o[0];
+    // separate the v5 from its v7: move it one step away with pair generation (fig. 7) and
+    // park the generated pair, `separation - 1` times
+    for (int s = 1; s < separation; ++s) {
+      int bestK = -1;
+      float bestD = -1;
+      for (int k = 0; k < 5; ++k) {
+        auto cp = ed.Mark();
+        AtomicOutcome g = ops.MoveWithPairGeneration(v5, k);
+        if (g) {
+          const float d = (m.vert[size_t(g.irregular[0])].P() - m.vert[size_t(v7)].P()).Norm();
+          if (d > bestD) bestD = d, bestK = k;
+        }
+        ed.RollbackTo(cp);
+      }
+      ASSERT_GE(bestK, 0);
+      AtomicOutcome g = ops.MoveWithPairGeneration(v5, bestK);
+      ASSERT_TRUE(g);
+      v5 = g.irregular[0];
+      int g5 = g.irregular[1], g7 = g.irregular[2];
+      if (ed.Valence(g5) != 5) std::swap(g5, g7);
+      const P3 bmid = (m.vert[size_t(b5)].P() + m.vert[size_t(b7)].P()) / 2;
+      Park(ed, ops, g5, g7, {m.vert[size_t(v5)].P(), m.vert[size_t(v7)].P(), bmid}, 7);
+    }
+    ASSERT_EQ(ed.Valence(v5), 5);
+    ASSERT_EQ(ed.Valence(v7), 7);
+    ASSERT_FALSE(ed.Adjacent(v5, v7));
+    ed.Commit();
+  }
+};
+
+/// The planar patch keeps its lattice positions (no relaxation), where a few flips in a row
+/// make collinear triangles: these tests are about connectivity, so the fold check is off.
+GeometryOptions Combinatorial() {
+  GeometryOptions g;
+  g.checkFolds = false;
+  return g;
+}
+
+/// The neighbourhood of radius r around vertex `root`, labelled canonically from the directed
+/// edge (root, first): vertices are numbered in breadth-first order, each vertex's neighbours
+/// taken counter-clockwise from its lowest-numbered neighbour. Two such forms are equal iff
+/// an orientation-preserving isomorphism maps one rooted neighbourhood onto the other: the
+/// irregular vertices sit at the same places relative to the root edge.
+std::vector<std::vector<int>> CanonicalNeighbourhood(TMesh& m, int root, int first, int r) {
+  std::map<int, int> label{{root, 0}, {first, 1}};
+  std::vector<int> order{root, first}, depth{0, 1};
+  std::vector<std::vector<int>> form;
+  for (size_t q = 0; q < order.size(); ++q) {
+    const int v = order[q];
+    VertexStar<TMesh> st = StarOf<TMesh>(&m.vert[size_t(v)]);
+    std::vector<int> nb;
+    for (auto* n : st.neighbors) nb.push_back(int(vcg::tri::Index(m, n)));
+    // start at the lowest-labelled neighbour (the one v was reached from, for v != root)
+    size_t start = 0;
+    int bestLabel = 1 << 30;
+    for (size_t i = 0; i < nb.size(); ++i)
+      if (label.count(nb[i]) && label[nb[i]] < bestLabel) bestLabel = label[nb[i]], start = i;
+    std::vector<int> row{int(nb.size())};
+    for (size_t i = 0; i < nb.size(); ++i) {
+      const int w = nb[(start + i) % nb.size()];
+      if (!label.count(w) && depth[q] < r) {
+        label[w] = int(order.size());
+        order.push_back(w);
+        depth.push_back(depth[q] + 1);
+      }
+      row.push_back(label.count(w) ? label[w] : -1);
+    }
+    if (depth[q] < r) form.push_back(row);
+  }
+  return form;
+}
+
+/// The first vertex after `a` on the connecting path from a to b (separatrix.h).
+int FirstOnPath(TMesh& m, int a, int b) {
+  SeparatrixTracer<TMesh> t(m);
+  ConnectingPath p = t.Connect(a, b, 50);
+  return p ? p.first[1] : -1;
+}
+
+/// Direction of the step from a to b in the plane, as a multiple of 60 degrees (0..5).
+int Sector(TMesh& m, int a, int b) {
+  const P3 d = m.vert[size_t(b)].P() - m.vert[size_t(a)].P();
+  const double ang = std::atan2(double(d[1]), double(d[0]));
+  return int(std::lround(ang / (M_PI / 3)) + 6) % 6;
+}
+
+CompositeOptions NoRelax() {
+  CompositeOptions o;
+  o.relax = false;
+  return o;
+}
+}  // namespace
+
+// Sec. 7.1.1: "the relative position of the two vertices remains the same". For each lead
+// (the v5, then the v7) and each of its neighbours: the lead lands on exactly that neighbour;
+// the neighbourhood of the pair (radius separation + 3, rooted at the lead and the first edge
+// of the connecting path) is, up to renaming, exactly the one before (so the partner moved
+// with the lead: a translation, not a rotation, since both moved by one edge over a
+// separation of 3 or more); the partner lands next to where it was; no other irregular vertex
+// changes. All six lattice directions are realised, from one lead or the other.
+TEST(PairMovement, NonAdjacent57PairTranslatesByTheLeadsLatticeStep) {
+  for (int separation : {3, 4}) {
+    SeparatedPair sp;
+    sp.Build(separation);
+    if (HasFatalFailure()) return;
+    TMesh& m = sp.m;
+    MeshEditor<TMesh> ed(m, Combinatorial());
+    CompositeOperations<TMesh> co(ed, nullptr, NoRelax());
+    const std::map<int, int> before = Irregular(m);
+    const auto snap = test::Snapshot(m);
+    const int radius = separation + 1;
+    const auto form0 = CanonicalNeighbourhood(m, sp.v5, FirstOnPath(m, sp.v5, sp.v7), radius);
+    std::set<int> sectors;  // lattice directions realised
+    int moved = 0;
+    for (int leadIsV5 : {1, 0}) {
+      const int lead = leadIsV5 ? sp.v5 : sp.v7, partner = leadIsV5 ? sp.v7 : sp.v5;
+      const int d = ed.Valence(lead);
+      for (int k = 0; k < d; ++k) {
+        const int x = co.atomic().NeighbourFrom(lead, -1, d == 7 ? k + 1 : k);  // fig. 7: a v7 lands on k + 1
+        const int sector = Sector(m, lead, x);
+        auto cp = ed.Mark();
+        CompositeOutcome o = co.MovePair(lead, partner, k, 1);
+        if (o) {
+          ++moved;
+          SCOPED_TRACE(testing::Message() << "separation " << separation << ", lead v" << d << ", k " << k << "\n"
+                                          << o.log);
+          EXPECT_EQ(o.lead, x);
+          EXPECT_EQ(ed.Valence(o.lead), d);
+          ASSERT_GE(o.partner, 0);
+          EXPECT_EQ(ed.Valence(o.partner), 12 - d);
+          const int new5 = leadIsV5 ? o.lead : o.partner, new7 = leadIsV5 ? o.partner : o.lead;
+          EXPECT_EQ(CanonicalNeighbourhood(m, new5, FirstOnPath(m, new5, new7), radius), form0);
+          if (ed.IsLive(partner)) EXPECT_TRUE(ed.Adjacent(partner, o.partner));
+          // the irregular vertices: the pair moved, nothing else
+          std::map<int, int> expect = before;
+          expect.erase(lead);
+          expect.erase(partner);
+          expect[o.lead] = d;
+          expect[o.partner] = 12 - d;
+          EXPECT_EQ(Irregular(m), expect);
+          EXPECT_TRUE(CheckInvariants(m).ok) << CheckInvariants(m).reason;
+          sectors.insert(sector);
+        }
+        ed.RollbackTo(cp);
+      }
+    }
+    EXPECT_EQ(test::Snapshot(m), snap);
+    EXPECT_GE(moved, 6);
+    EXPECT_EQ(sectors.size(), 6u) << "separation " << separation << ": not all six lattice directions were realised";
+  }
+}
