@@ -360,6 +360,9 @@ class MeshEditor {
                   sa.Valence() - 1, " (the triangle would vanish)");
     if (su.Valence() + sv.Valence() - 3 < 2)
       return Fail("collapsing boundary edge (", u, ", ", v, ") would leave a vertex of valence < 2");
+    Result seam = attr_.StarSeamless(su);  // attributes: interpolation needs one texture around u, v
+    if (seam) seam = attr_.StarSeamless(sv);
+    if (!seam) return Fail("collapsing boundary edge (", u, ", ", v, ") cannot carry the texture: ", seam.reason);
     return Result::Ok();
   }
 
@@ -453,7 +456,8 @@ class MeshEditor {
       refArea += Area(f);
     }
     refArea /= ScalarType(region.size());
-    const auto carried = attr_.BeforeCollapse(u, v, f0, region, target);  // attributes at target
+    // attributes at target, read from a face of the edge (on a boundary edge only one exists)
+    const auto carried = attr_.BeforeCollapse(u, v, f0 ? f0 : f1, region, target);
 
     // Glue the outer neighbours of f0 across its edges (v,b) and (b,u), and of f1 across
     // (u,a) and (a,v): each pair becomes one edge once f0, f1 vanish. If one side was the
@@ -571,18 +575,19 @@ class MeshEditor {
     c2 += a->P();
     c2 /= ScalarType(g2.size() + 1);
     const CoordType p = w->P();
-    const auto carried = attr_.BeforeSplit(st, g1.front().f, g1.back().f, p + (c1 - p) * s, p + (c2 - p) * s);
+    // A boundary w: the half whose corners wrap around the boundary gap (g1 if i > j, else g2)
+    // keeps the boundary and stays at w's position, on the boundary curve.
+    const bool wKeepsBoundary = st.boundary && i > j, xTakesBoundary = st.boundary && i < j;
+    const CoordType pw = wKeepsBoundary ? p : p + (c1 - p) * s, px = xTakesBoundary ? p : p + (c2 - p) * s;
+    const auto carried = attr_.BeforeSplit(st, g1.front().f, g1.back().f, pw, px);
 
     x->ImportData(*w);
     x->ClearS();
     x->VFp() = nullptr;
     x->VFi() = 0;
     journal_.SaveVertex(w);
-    // A boundary w: the half whose corners wrap around the boundary gap (g1 if i > j, else g2)
-    // keeps the boundary and stays at w's position, on the boundary curve.
-    const bool wKeepsBoundary = st.boundary && i > j, xTakesBoundary = st.boundary && i < j;
-    w->P() = wKeepsBoundary ? p : p + (c1 - p) * s;
-    x->P() = xTakesBoundary ? p : p + (c2 - p) * s;
+    w->P() = pw;
+    x->P() = px;
     std::vector<FaceType*> changed{fa, fb};
     for (auto& c : g2) {
       journal_.SaveFace(c.f);
