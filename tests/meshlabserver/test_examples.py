@@ -178,11 +178,13 @@ def test_automatic_reduction(meshlab, corpus):
 
 # ------------------------------------------------------------------ refusals
 def test_refusal_exits_255_with_the_reason_and_writes_nothing(meshlab, corpus):
-    """A 5-7 pair cannot be cancelled (Theorem 5.5)."""
+    """A 5-7 pair cannot be cancelled alone (Theorem 5.5); on knot1 a third irregular vertex is
+    near the pair 47-3186, so the refusal names the triple that can be cancelled instead."""
     r = meshlab.run(corpus("knot1.off"), filters=[select_vertices([47, 3186]),
                                                   Filter("Irregular Vertices: Cancel Triple", relax=True, colorize=True)])
     assert r.returncode == 255 and not os.path.exists(r.output_path)
-    assert r.refusal.startswith("A 5-7 pair cannot be cancelled") and "Theorem 5.5" in r.refusal
+    assert r.refusal.startswith("The pair (47, 3186) cannot be cancelled alone") and "Theorem 5.5" in r.refusal
+    assert "5-7-7 triple" in r.refusal and "Cancel Triple" in r.refusal
     assert r.returned == []
 
 

@@ -224,8 +224,8 @@ def reduce_refusal(m):
     ("head.off", None), ("blobby_3cc.off", None), ("mesh_with_border.off", None),
     ("tetrahedron.off", "No vertex could be reduced"),  # four v3, no regular vertex to collapse into
     ("triangle.off", "no interior vertex of valence other than 5, 6 and 7"),  # boundary only
-    # v4s whose only regular neighbour has opposite vertices of valence under 6
-    ("open_cube.off", "No vertex could be reduced. 3: vertex 3 (v4) has no regular neighbour to collapse into"),
+    # v4s: every orientation's collapse would touch the boundary or another v4
+    ("open_cube.off", "No vertex could be reduced. 3: vertex 3 (v4) cannot be split into v5s in any orientation"),
 ])
 def test_boundaries_and_components_are_handled(name, reduce_says):
     """Valid input with boundaries, several components or almost nothing: Analyze and Relax
