@@ -58,12 +58,7 @@ FilterOutcome ApplyAtomic(FilterContext& ctx, const ParamValues& par) {
   const CMeshO::CoordType target(tp[0], tp[1], tp[2]);
   std::vector<int> sel = SelectedVertices(m);
   const irr::TopologySummary before = SummaryOf(m);
-  std::unique_ptr<irr::SurfaceProjector> projector;
-  std::unique_ptr<irr::BoundaryCurve> boundary;  // boundary vertices slide along the boundary as it was
-  if (relax) {
-    projector.reset(new irr::SurfaceProjector(m));
-    boundary.reset(new irr::BoundaryCurve(m));
-  }
+  EditRelaxation relaxation(m, relax);  // before editing: freezes the surface as it was
   irr::MeshEditor<CMeshO> ed(m);
   irr::AtomicOperations<CMeshO> ops(ed);
   auto valences = [&](const std::vector<int>& vs) {
@@ -188,7 +183,7 @@ FilterOutcome ApplyAtomic(FilterContext& ctx, const ParamValues& par) {
     std::vector<int> seeds;
     for (auto& kv : out.changes)
       if (ed.IsLive(kv.first)) seeds.push_back(kv.first);
-    relaxed = RelaxAroundEdit(m, seeds, projector.get(), boundary.get());
+    relaxed = relaxation.Around(seeds);
   }
   std::string changes;
   for (auto& kv : out.changes) changes += Format(" %d:%d", kv.first, kv.second);

@@ -24,12 +24,7 @@ FilterOutcome ApplyBoundary(FilterContext& ctx, const ParamValues& par) {
   const std::vector<int> sel = SelectedVertices(m);
   const irr::TopologySummary before = SummaryOf(m);
   if (before.boundaryLoops == 0) return FilterOutcome::Refuse("The mesh has no boundary: there is nothing to absorb into.");
-  std::unique_ptr<irr::SurfaceProjector> projector;
-  std::unique_ptr<irr::BoundaryCurve> curve;  // boundary vertices slide along the boundary as it was
-  if (relax) {
-    projector.reset(new irr::SurfaceProjector(m));
-    curve.reset(new irr::BoundaryCurve(m));
-  }
+  EditRelaxation relaxation(m, relax);  // before editing: freezes the surface as it was
   irr::MeshEditor<CMeshO> ed(m);
   irr::BoundaryOperations<CMeshO> ops(ed);
   irr::BoundaryOutcome out;
@@ -73,7 +68,7 @@ FilterOutcome ApplyBoundary(FilterContext& ctx, const ParamValues& par) {
     if (st.Valence() != irr::RegularValenceOf(st)) m.vert[size_t(v)].SetS();
   }
   if (relax && !touched.empty()) {
-    relaxed = RelaxAroundEdit(m, touched, projector.get(), curve.get());
+    relaxed = relaxation.Around(touched);
   }
   FinishEdit(m);
   ctx.Logf("Boundary operation: %s", out.description.c_str());

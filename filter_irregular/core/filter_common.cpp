@@ -108,18 +108,32 @@ void LogShape(FilterContext& ctx, const char* when, CMeshO& m) {
            when, s.minAngleDeg, s.meanMinAngleDeg, 100.0 * s.shareBelow30, s.edgeLengthSpread);
 }
 
-int RelaxAroundEdit(CMeshO& m, const std::vector<int>& seeds, const irr::SurfaceProjector* original,
-                    const irr::BoundaryCurve* boundary, int iterations) {
+struct EditRelaxation::Frozen {
+  explicit Frozen(CMeshO& m) : surface(m), boundary(m) {}
+  irr::SurfaceProjector surface;
+  irr::BoundaryCurve boundary;
+};
+
+EditRelaxation::EditRelaxation(CMeshO& m, bool enabled) : m_(m) {
+  if (enabled) frozen_.reset(new Frozen(m));
+}
+
+EditRelaxation::~EditRelaxation() = default;
+
+const irr::SurfaceProjector* EditRelaxation::Surface() const { return frozen_ ? &frozen_->surface : nullptr; }
+
+int EditRelaxation::Around(const std::vector<int>& seeds, int iterations) {
+  if (!frozen_) return 0;
   std::vector<int> live;
   for (int v : seeds)
-    if (v >= 0 && size_t(v) < m.vert.size() && !m.vert[size_t(v)].IsD()) live.push_back(v);
+    if (v >= 0 && size_t(v) < m_.vert.size() && !m_.vert[size_t(v)].IsD()) live.push_back(v);
   if (live.empty()) return 0;
   irr::RelaxOptions ro;
   ro.iterations = iterations;
-  ro.boundaryCurve = boundary;
-  const std::vector<int> ring = irr::KRing(m, live, 2);
-  irr::AttributeResampler<CMeshO> texture(m, ring);  // the texture stays where it was on the surface
-  irr::LocalRelax(m, ring, original, ro);
+  ro.boundaryCurve = &frozen_->boundary;
+  const std::vector<int> ring = irr::KRing(m_, live, 2);
+  irr::AttributeResampler<CMeshO> texture(m_, ring);  // the texture stays where it was on the surface
+  irr::LocalRelax(m_, ring, &frozen_->surface, ro);
   texture.Resample();
   return int(ring.size());
 }

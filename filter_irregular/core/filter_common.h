@@ -2,6 +2,7 @@
 // edit, the colour legend and the topology summary with its output values).
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -54,11 +55,25 @@ std::string HistogramText(const std::map<int, int>& h);
 /// The shape measures line ("Before: min angle ...").
 void LogShape(FilterContext& ctx, const char* when, CMeshO& m);
 
-/// Local relaxation (sec. 8) of the 2-ring around `seeds` after an edit, `iterations` sweeps:
-/// projected onto `original` (may be null), boundary vertices sliding along `boundary` (may be
-/// null: they stay fixed), texture coordinates re-sampled where the vertices moved to
-/// (attribute_transfer.h). Returns the number of vertices in the ring. O(ring).
-int RelaxAroundEdit(CMeshO& m, const std::vector<int>& seeds, const vcg_ext::irregular::SurfaceProjector* original,
-                    const vcg_ext::irregular::BoundaryCurve* boundary, int iterations = 5);
+/// The relaxation after an edit (sec. 8): the surface and its boundary frozen as they were
+/// before the filter, then local relaxation of the 2-ring around the edited vertices,
+/// projected onto that surface, boundary vertices sliding along that boundary (corners
+/// fixed), texture coordinates re-sampled where the vertices moved to
+/// (attribute_transfer.h). Disabled: freezes nothing and relaxes nothing.
+class EditRelaxation {
+ public:
+  EditRelaxation(CMeshO& m, bool enabled);  ///< O(F) when enabled: call before editing
+  ~EditRelaxation();
+  /// The frozen surface (null when disabled), for operations that relax step by step.
+  const vcg_ext::irregular::SurfaceProjector* Surface() const;
+  /// Relaxes the 2-ring around the live vertices of `seeds`; returns its size (0 when
+  /// disabled). O(ring).
+  int Around(const std::vector<int>& seeds, int iterations = 5);
+
+ private:
+  struct Frozen;
+  CMeshO& m_;
+  std::unique_ptr<Frozen> frozen_;
+};
 
 }  // namespace filter_irregular

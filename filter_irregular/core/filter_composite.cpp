@@ -1,6 +1,6 @@
 // filter_irregular: the composite filters (sec. 6.3 and 7, vcg_ext/irregular/composite_ops.h):
 // Reduce to Valence 5 and 7, Aggregate, Move Pair, Cancel Triple, Cancel Quadruple, Generate.
-// They share one frame (RunComposite): input check, projector for relaxation, all-or-nothing
+// They share one frame (RunComposite): input check, the relaxation frozen before the edit (EditRelaxation), all-or-nothing
 // edit, re-selection of the resulting irregular vertices, legend, output values.
 #include <algorithm>
 #include <memory>
@@ -67,13 +67,12 @@ FilterOutcome RunComposite(FilterContext& ctx, const ParamValues& par, const cha
   std::vector<int> sel = SelectedVertices(m);
   const irr::TopologySummary before = SummaryOf(m);
   const bool relax = par.Bool("relax");
-  std::unique_ptr<irr::SurfaceProjector> projector;
-  if (relax) projector.reset(new irr::SurfaceProjector(m));
+  EditRelaxation relaxation(m, relax);  // before editing: freezes the surface as it was
   irr::MeshEditor<CMeshO> ed(m);
   irr::CompositeOptions co;
   co.relax = relax;
   if (auto cb = ctx.Progress()) co.progress = [cb](int pct, const char* text) { cb(pct, text); };
-  Ops ops(ed, projector.get(), co);
+  Ops ops(ed, relaxation.Surface(), co);
   CompositeFrame frame{m, ed, ops, sel, ctx, FilterOutcome()};
   irr::CompositeOutcome out = body(frame);
   if (!out.result) return FilterOutcome::Refuse(out.result.reason);
