@@ -1,0 +1,330 @@
+// filter_irregular: dry runs of the composite operations (composite_ops.h; issue 13, item 3).
+//
+// A composite operation (pair movement, triple / quadruple cancellation, generation) spans
+// O(L) elements and its outcome depends on relaxation and fold checks along the way, which
+// topology alone cannot tell. So the dry run copies the region the operation can touch - the
+// k-ring around the vertices involved and around a shortest edge path between them - into a
+// small scratch mesh of the same type, runs the real composite operation there with the same
+// options, and maps the result back to the user's indices. The user's mesh is only read.
+//
+// Fidelity: the scratch keeps the original's vertex and face order (so "the neighbour of
+// smallest index" and every tie-break are the same), its FF adjacency and, for every vertex
+// whose whole star is copied, its VF chain. Where the scratch outcome could differ from the
+// real one - the operation changed something within `margin` rings of the scratch's cut
+// border, or failed - the region is grown once (radius doubled) and run again:
+//  * success, border untouched: exact = true;
+//  * success only after growing, border untouched: exact = true (the grown run is reported);
+//  * success touching the border even after growing: exact = false (reported as is);
+//  * failure: reported from the grown run; exact = true when both runs fail (the refusal is
+//    reproduced with twice the context), false otherwise. Refusal texts name scratch-free
+//    (mapped) vertex ids only in the named fields; the reason text may mention scratch ids.
+// Cost: O(region) = O(L * k) per prediction, never a pass over the whole mesh.
+#pragma once
+
+#include <algorithm>
+#include <deque>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+#include "composite_ops.h"
+
+namespace vcg_ext {
+namespace irregular {
+
+struct CompositePrediction {
+  Result result = Result::Fail("not predicted");  ///< the verdict and, if refused, why
+  bool exact = false;          ///< true when the scratch region provably held the whole edit (see header)
+  std::vector<int> irregular;  ///< the irregular vertices the operation would leave (user's ids)
+  int atomicSteps = 0;         ///< atomic operations it would apply
+  int lead = -1, partner = -1;  ///< pair movement: where the lead / partner would end
+  int survivor = -1;            ///< triple cancellation: the vertex left; triple generation: the v5/v7
+  int pair5 = -1, pair7 = -1;   ///< generation: the generated (moved) 5-7 pair
+  int other5 = -1, other7 = -1; ///< quadruple generation: the pair that stays
+  std::vector<int> created;     ///< ids new vertices would get (appended after the last vertex)
+  std::vector<int> deleted;     ///< existing vertices that would be deleted (collapses)
+  int regionVertices = 0;       ///< size of the scratch region used (diagnostics)
+  bool grown = false;           ///< the region had to be grown once
+  explicit operator bool() const { return result.ok; }
+};
+
+template <class MeshType>
+class CompositePredictor {
+ public:
+  typedef typename MeshType::VertexType VertexType;
+  typedef typename MeshType::FaceType FaceType;
+  typedef typename MeshType::CoordType CoordType;
+
+  /// m: the user's mesh (FF/VF up to date); only read. original / opt / geometry: exactly what
+  /// the real CompositeOperations / MeshEditor would be given.
+  CompositePredictor(MeshType& m, const SurfaceProjector* original, CompositeOptions opt = CompositeOptions(),
+                     GeometryOptions geometry = GeometryOptions())
+      : m_(m), original_(original), opt_(opt), geom_(geometry) {
+    opt_.progress = nullptr;
+  }
+
+  int margin = 4;  ///< rings next to the cut border whose change makes a run inexact
+
+  /// Dry run of CompositeOperations::MovePair.
+  CompositePrediction PredictMovePair(int lead, int partner, int k, int steps) {
+    return Run({lead, partner}, {lead, partner}, std::max(0, steps) + 4,
+               [&](Ops& co, const Map& s) { return co.MovePair(s(lead), s(partner), k, steps); });
+  }
+  /// Dry run of CompositeOperations::MoveAdjacentPair57.
+  CompositePrediction PredictMoveAdjacentPair57(int v5, int v7, int dir, int steps) {
+    return Run({v5, v7}, {v5, v7}, std::max(0, steps) + 4,
+               [&](Ops& co, const Map& s) { return co.MoveAdjacentPair57(s(v5), s(v7), dir, steps); });
+  }
+  /// Dry run of CompositeOperations::MovePair57Toward: the corridor is a greedy walk toward
+  /// the target point.
+  CompositePrediction PredictMovePair57Toward(int v5, int v7, CoordType target) {
+    std::vector<int> seeds{v5, v7};
+    if (Live(v5)) {
+      int cur = v5;
+      for (int s = 0; s < opt_.maxTransportSteps; ++s) {
+        int best = -1;
+        double bd = (m_.vert[size_t(cur)].P() - target).Norm();
+        for (auto n : StarOf<MeshType>(&m_.vert[size_t(cur)]).neighbors) {
+          const double d = (n->P() - target).Norm();
+          if (d < bd) bd = d, best = int(vcg::tri::Index(m_, n));
+        }
+        if (best < 0) break;
+        seeds.push_back(cur = best);
+      }
+    }
+    return Run(seeds, {v5, v7}, 4, [&](Ops& co, const Map& s) { return co.MovePair57Toward(s(v5), s(v7), target); });
+  }
+  /// Dry run of CompositeOperations::CancelTriple.
+  CompositePrediction PredictCancelTriple(const std::vector<int>& triple) {
+    return Run(Corridor(triple), triple, 4, [&](Ops& co, const Map& s) { return co.CancelTriple(s(triple)); });
+  }
+  /// Dry run of CompositeOperations::CancelQuadruple.
+  CompositePrediction PredictCancelQuadruple(const std::vector<int>& quad) {
+    return Run(Corridor(quad), quad, 4, [&](Ops& co, const Map& s) { return co.CancelQuadruple(s(quad)); });
+  }
+  /// Dry run of CompositeOperations::GenerateTriple.
+  CompositePrediction PredictGenerateTriple(int v, int k, int spacing) {
+    return Run({v}, {v}, std::max(0, spacing) + 5,
+               [&](Ops& co, const Map& s) { return co.GenerateTriple(s(v), k, spacing); });
+  }
+  /// Dry run of CompositeOperations::GenerateQuadruple.
+  CompositePrediction PredictGenerateQuadruple(int v, int k, int spacing) {
+    return Run({v}, {v}, std::max(0, spacing) + 5,
+               [&](Ops& co, const Map& s) { return co.GenerateQuadruple(s(v), k, spacing); });
+  }
+  /// Dry run of CompositeOperations::GenerateQuadrupleShape.
+  CompositePrediction PredictGenerateQuadrupleShape(int v, int k, int dirX, int x, int dirY, int y) {
+    return Run({v}, {v}, std::max(0, x) + std::max(0, y) + 5,
+               [&](Ops& co, const Map& s) { return co.GenerateQuadrupleShape(s(v), k, dirX, x, dirY, y); });
+  }
+
+ private:
+  typedef CompositeOperations<MeshType> Ops;
+
+  /// original id -> scratch id (-1 if not in the scratch, which the operations refuse as dead)
+  struct Map {
+    const std::unordered_map<int, int>* toScratch;
+    int operator()(int i) const {
+      auto it = toScratch->find(i);
+      return it == toScratch->end() ? -1 : it->second;
+    }
+    std::vector<int> operator()(const std::vector<int>& v) const {
+      std::vector<int> r;
+      for (int i : v) r.push_back((*this)(i));
+      return r;
+    }
+  };
+
+  struct Scratch {
+    MeshType mesh;
+    std::vector<int> orig;                  ///< scratch vertex -> original vertex
+    std::unordered_map<int, int> toScratch; ///< original vertex -> scratch vertex
+    std::vector<int> guard;                 ///< scratch vertices within `margin` of the cut border
+    int n0 = 0;
+  };
+
+  bool Live(int i) const {
+    return i >= 0 && size_t(i) < m_.vert.size() && !m_.vert[size_t(i)].IsD() && m_.vert[size_t(i)].cVFp();
+  }
+
+  /// The seeds plus a shortest edge path (BFS, bounded) from the first seed to each other one:
+  /// the way a transport between them takes, up to the bends the growth covers.
+  std::vector<int> Corridor(const std::vector<int>& seeds) {
+    std::vector<int> out(seeds);
+    for (int s : seeds)
+      if (!Live(s)) return out;
+    for (size_t a = 0; a < seeds.size(); ++a)
+      for (size_t b = a + 1; b < seeds.size(); ++b) {
+        std::vector<int> p = Path(seeds[a], seeds[b], opt_.maxTransportSteps);
+        out.insert(out.end(), p.begin(), p.end());
+      }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+
+  std::vector<int> Path(int from, int to, int maxHops) {
+    std::unordered_map<int, int> parent{{from, from}}, depth{{from, 0}};
+    std::deque<int> q{from};
+    while (!q.empty()) {
+      const int x = q.front();
+      q.pop_front();
+      if (x == to) break;
+      if (depth[x] >= maxHops) continue;
+      for (auto n : StarOf<MeshType>(&m_.vert[size_t(x)]).neighbors) {
+        const int ni = int(vcg::tri::Index(m_, n));
+        if (parent.emplace(ni, x).second) depth[ni] = depth[x] + 1, q.push_back(ni);
+      }
+    }
+    std::vector<int> p;
+    if (!parent.count(to)) return p;
+    for (int x = to; x != from; x = parent[x]) p.push_back(x);
+    return p;
+  }
+
+  /// Copies every face incident to the k-ring of `core` into a scratch mesh (vertex and face
+  /// order kept), rebuilds FF/VF there and restores the original VF chains of fully copied
+  /// vertices.
+  void Extract(const std::vector<int>& core, int k, Scratch& s) {
+    std::vector<int> live;
+    for (int c : core)
+      if (Live(c)) live.push_back(c);
+    const std::vector<int> inner = KRing(m_, live, k);
+    std::vector<int> faces;
+    for (int v : inner)
+      for (auto& c : StarOf<MeshType>(&m_.vert[size_t(v)]).corners) faces.push_back(int(vcg::tri::Index(m_, c.f)));
+    std::sort(faces.begin(), faces.end());
+    faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+    std::vector<int> verts;
+    for (int f : faces)
+      for (int z = 0; z < 3; ++z) verts.push_back(int(vcg::tri::Index(m_, m_.face[size_t(f)].V(z))));
+    std::sort(verts.begin(), verts.end());
+    verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
+    s.orig = verts;
+    for (size_t i = 0; i < verts.size(); ++i) s.toScratch[verts[i]] = int(i);
+    std::unordered_map<int, int> faceTo;
+    for (size_t j = 0; j < faces.size(); ++j) faceTo[faces[j]] = int(j);
+    s.mesh.textures = m_.textures;
+    vcg::tri::Allocator<MeshType>::AddVertices(s.mesh, verts.size());
+    vcg::tri::Allocator<MeshType>::AddFaces(s.mesh, faces.size());
+    for (size_t i = 0; i < verts.size(); ++i) s.mesh.vert[i].ImportData(m_.vert[size_t(verts[i])]);
+    for (size_t j = 0; j < faces.size(); ++j) {
+      FaceType& src = m_.face[size_t(faces[j])];
+      FaceType& dst = s.mesh.face[j];
+      dst.ImportData(src);
+      for (int z = 0; z < 3; ++z) dst.V(z) = &s.mesh.vert[size_t(s.toScratch[int(vcg::tri::Index(m_, src.V(z)))])];
+    }
+    vcg::tri::UpdateTopology<MeshType>::FaceFace(s.mesh);
+    vcg::tri::UpdateTopology<MeshType>::VertexFace(s.mesh);
+    // Vertices whose whole star was copied keep the original VF chain (the order stars are
+    // walked in); the others form the cut border.
+    std::vector<int> border;
+    for (size_t i = 0; i < verts.size(); ++i) {
+      VertexType& ov = m_.vert[size_t(verts[i])];
+      bool whole = true;
+      for (auto& c : StarOf<MeshType>(&ov).corners) whole = whole && faceTo.count(int(vcg::tri::Index(m_, c.f)));
+      if (!whole) {
+        border.push_back(int(i));
+        continue;
+      }
+      VertexType& sv = s.mesh.vert[i];
+      sv.VFp() = &s.mesh.face[size_t(faceTo[int(vcg::tri::Index(m_, ov.cVFp()))])];
+      sv.VFi() = ov.cVFi();
+      for (auto& c : StarOf<MeshType>(&ov).corners) {
+        FaceType& of = *c.f;
+        FaceType& sf = s.mesh.face[size_t(faceTo[int(vcg::tri::Index(m_, &of))])];
+        FaceType* nf = of.cVFp(c.z);
+        sf.VFp(c.z) = nf ? &s.mesh.face[size_t(faceTo[int(vcg::tri::Index(m_, nf))])] : nullptr;
+        sf.VFi(c.z) = of.cVFi(c.z);
+      }
+    }
+    s.guard = KRing(s.mesh, border, margin);
+    s.n0 = int(s.mesh.vert.size());
+  }
+
+  struct GuardState {
+    std::vector<CoordType> p;
+    std::vector<int> valence;
+    std::vector<char> dead;
+  };
+  GuardState Guard(Scratch& s) {
+    GuardState g;
+    for (int v : s.guard) {
+      VertexType& x = s.mesh.vert[size_t(v)];
+      g.p.push_back(x.P());
+      g.dead.push_back(x.IsD() ? 1 : 0);
+      g.valence.push_back(x.IsD() ? 0 : StarOf<MeshType>(&x).Valence());
+    }
+    return g;
+  }
+  static bool SameGuard(const GuardState& a, const GuardState& b) {
+    return a.p == b.p && a.valence == b.valence && a.dead == b.dead;
+  }
+
+  int Back(const Scratch& s, int i) const {
+    if (i < 0) return -1;
+    if (i < s.n0) return s.orig[size_t(i)];
+    return int(m_.vert.size()) + (i - s.n0);
+  }
+
+  template <class Op>
+  CompositePrediction RunOnce(const std::vector<int>& core, int k, Op& op, bool& touchedBorder) {
+    Scratch s;
+    Extract(core, k, s);
+    MeshEditor<MeshType> ed(s.mesh, geom_);
+    Ops co(ed, original_, opt_);
+    const GuardState before = Guard(s);
+    std::vector<char> liveBefore(s.mesh.vert.size());
+    for (size_t i = 0; i < s.mesh.vert.size(); ++i) liveBefore[i] = ed.IsLive(int(i));
+    CompositeOutcome o = op(co, Map{&s.toScratch});
+    touchedBorder = !SameGuard(before, Guard(s));
+    CompositePrediction p;
+    p.result = o.result;
+    p.regionVertices = s.n0;
+    p.atomicSteps = o.atomicSteps;
+    if (!o) return p;
+    for (int v : o.irregular) p.irregular.push_back(Back(s, v));
+    p.lead = Back(s, o.lead), p.partner = Back(s, o.partner), p.survivor = Back(s, o.survivor);
+    p.pair5 = Back(s, o.pair5), p.pair7 = Back(s, o.pair7), p.other5 = Back(s, o.other5), p.other7 = Back(s, o.other7);
+    for (size_t i = 0; i < s.mesh.vert.size(); ++i) {
+      const bool now = ed.IsLive(int(i));
+      if (int(i) >= s.n0) {
+        if (now) p.created.push_back(Back(s, int(i)));
+      } else if (liveBefore[i] && !now) {
+        p.deleted.push_back(Back(s, int(i)));
+      }
+    }
+    return p;
+  }
+
+  template <class Op>
+  CompositePrediction Run(const std::vector<int>& core, const std::vector<int>& request, int k, Op op) {
+    for (int v : request)
+      if (!Live(v)) {
+        CompositePrediction p;
+        p.result = Result::Fail("vertex " + std::to_string(v) + " is not a live vertex of the mesh");
+        p.exact = true;
+        return p;
+      }
+    bool touched = false;
+    CompositePrediction first = RunOnce(core, k, op, touched);
+    if (first && !touched) {
+      first.exact = true;
+      return first;
+    }
+    bool touched2 = false;
+    CompositePrediction second = RunOnce(core, 2 * k, op, touched2);
+    second.grown = true;
+    if (second) second.exact = !touched2;
+    else second.exact = !first;
+    return second;
+  }
+
+  MeshType& m_;
+  const SurfaceProjector* original_;
+  CompositeOptions opt_;
+  GeometryOptions geom_;
+};
+
+}  // namespace irregular
+}  // namespace vcg_ext
