@@ -11,13 +11,15 @@
 // smallest index" and every tie-break are the same), its FF adjacency and, for every vertex
 // whose whole star is copied, its VF chain. Where the scratch outcome could differ from the
 // real one - the operation changed something within `margin` rings of the scratch's cut
-// border, or failed - the region is grown once (radius doubled) and run again:
-//  * success, border untouched: exact = true;
-//  * success only after growing, border untouched: exact = true (the grown run is reported);
-//  * success touching the border even after growing: exact = false (reported as is);
-//  * failure: reported from the grown run; exact = true when both runs fail (the refusal is
-//    reproduced with twice the context), false otherwise. Refusal texts name scratch-free
-//    (mapped) vertex ids only in the named fields; the reason text may mention scratch ids.
+// border, or it probed steps there and undid them, or a separatrix trace ran into it - the
+// operation runs on the region of radius k and again with the radius doubled (at most twice):
+//  * exact = true when two consecutive radii give the same outcome (verdict; on success the
+//    same named results, steps, created and deleted vertices) and the larger run left its
+//    border rings untouched; the larger run is reported;
+//  * otherwise exact = false and the largest run is reported (a guess the caller may verify
+//    by applying).
+// The refusal text comes from the scratch run: vertex ids inside it are scratch ids; the named
+// fields are always the user's ids.
 // Cost: O(region) = O(L * k) per prediction, never a pass over the whole mesh.
 #pragma once
 
@@ -44,7 +46,7 @@ struct CompositePrediction {
   std::vector<int> created;     ///< ids new vertices would get (appended after the last vertex)
   std::vector<int> deleted;     ///< existing vertices that would be deleted (collapses)
   int regionVertices = 0;       ///< size of the scratch region used (diagnostics)
-  bool grown = false;           ///< the region had to be grown once
+  bool grown = false;           ///< the region had to be grown beyond the first doubling
   explicit operator bool() const { return result.ok; }
 };
 
@@ -64,15 +66,19 @@ class CompositePredictor {
   }
 
   int margin = 4;  ///< rings next to the cut border whose change makes a run inexact
+  /// rings copied beyond the vertices, the paths and the steps requested. 12, not fewer: on the
+  /// icosphere one quadruple cancellation gave the same wrong step count with 7 and 14 rings
+  /// (a separatrix trace or an undone probe reached further), the right one from 12 rings on.
+  int rings = 12;
 
   /// Dry run of CompositeOperations::MovePair.
   CompositePrediction PredictMovePair(int lead, int partner, int k, int steps) {
-    return Run({lead, partner}, {lead, partner}, std::max(0, steps) + 4,
+    return Run({lead, partner}, {lead, partner}, std::max(0, steps) + rings,
                [&](Ops& co, const Map& s) { return co.MovePair(s(lead), s(partner), k, steps); });
   }
   /// Dry run of CompositeOperations::MoveAdjacentPair57.
   CompositePrediction PredictMoveAdjacentPair57(int v5, int v7, int dir, int steps) {
-    return Run({v5, v7}, {v5, v7}, std::max(0, steps) + 4,
+    return Run({v5, v7}, {v5, v7}, std::max(0, steps) + rings,
                [&](Ops& co, const Map& s) { return co.MoveAdjacentPair57(s(v5), s(v7), dir, steps); });
   }
   /// Dry run of CompositeOperations::MovePair57Toward: the corridor is a greedy walk toward
@@ -92,29 +98,29 @@ class CompositePredictor {
         seeds.push_back(cur = best);
       }
     }
-    return Run(seeds, {v5, v7}, 4, [&](Ops& co, const Map& s) { return co.MovePair57Toward(s(v5), s(v7), target); });
+    return Run(seeds, {v5, v7}, rings, [&](Ops& co, const Map& s) { return co.MovePair57Toward(s(v5), s(v7), target); });
   }
   /// Dry run of CompositeOperations::CancelTriple.
   CompositePrediction PredictCancelTriple(const std::vector<int>& triple) {
-    return Run(Corridor(triple), triple, 4, [&](Ops& co, const Map& s) { return co.CancelTriple(s(triple)); });
+    return Run(Corridor(triple), triple, rings, [&](Ops& co, const Map& s) { return co.CancelTriple(s(triple)); });
   }
   /// Dry run of CompositeOperations::CancelQuadruple.
   CompositePrediction PredictCancelQuadruple(const std::vector<int>& quad) {
-    return Run(Corridor(quad), quad, 4, [&](Ops& co, const Map& s) { return co.CancelQuadruple(s(quad)); });
+    return Run(Corridor(quad), quad, rings, [&](Ops& co, const Map& s) { return co.CancelQuadruple(s(quad)); });
   }
   /// Dry run of CompositeOperations::GenerateTriple.
   CompositePrediction PredictGenerateTriple(int v, int k, int spacing) {
-    return Run({v}, {v}, std::max(0, spacing) + 5,
+    return Run({v}, {v}, std::max(0, spacing) + rings + 1,
                [&](Ops& co, const Map& s) { return co.GenerateTriple(s(v), k, spacing); });
   }
   /// Dry run of CompositeOperations::GenerateQuadruple.
   CompositePrediction PredictGenerateQuadruple(int v, int k, int spacing) {
-    return Run({v}, {v}, std::max(0, spacing) + 5,
+    return Run({v}, {v}, std::max(0, spacing) + rings + 1,
                [&](Ops& co, const Map& s) { return co.GenerateQuadruple(s(v), k, spacing); });
   }
   /// Dry run of CompositeOperations::GenerateQuadrupleShape.
   CompositePrediction PredictGenerateQuadrupleShape(int v, int k, int dirX, int x, int dirY, int y) {
-    return Run({v}, {v}, std::max(0, x) + std::max(0, y) + 5,
+    return Run({v}, {v}, std::max(0, x) + std::max(0, y) + rings + 1,
                [&](Ops& co, const Map& s) { return co.GenerateQuadrupleShape(s(v), k, dirX, x, dirY, y); });
   }
 
@@ -147,8 +153,8 @@ class CompositePredictor {
     return i >= 0 && size_t(i) < m_.vert.size() && !m_.vert[size_t(i)].IsD() && m_.vert[size_t(i)].cVFp();
   }
 
-  /// The seeds plus a shortest edge path (BFS, bounded) from the first seed to each other one:
-  /// the way a transport between them takes, up to the bends the growth covers.
+  /// The seeds plus, for every two of them, a shortest edge path (BFS, bounded) and the
+  /// connecting path of two separatrix segments (separatrix.h) the transport follows. O(L^2).
   std::vector<int> Corridor(const std::vector<int>& seeds) {
     std::vector<int> out(seeds);
     for (int s : seeds)
@@ -157,6 +163,12 @@ class CompositePredictor {
       for (size_t b = a + 1; b < seeds.size(); ++b) {
         std::vector<int> p = Path(seeds[a], seeds[b], opt_.maxTransportSteps);
         out.insert(out.end(), p.begin(), p.end());
+        // the connecting path of two separatrix segments (sec. 7.1.1) the transport follows
+        ConnectingPath c = SeparatrixTracer<MeshType>(m_).Connect(seeds[a], seeds[b], opt_.maxTransportSteps);
+        if (c) {
+          std::vector<int> cv = c.Vertices();
+          out.insert(out.end(), cv.begin(), cv.end());
+        }
       }
     std::sort(out.begin(), out.end());
     out.erase(std::unique(out.begin(), out.end()), out.end());
@@ -306,18 +318,33 @@ class CompositePredictor {
         p.exact = true;
         return p;
       }
+    // A run can also reach the cut border without leaving a trace there (steps tried and
+    // undone, separatrix tracing), so one run is never trusted alone: the region grows until
+    // two consecutive sizes give the same outcome, the larger one with its border untouched.
     bool touched = false;
-    CompositePrediction first = RunOnce(core, k, op, touched);
-    if (first && !touched) {
-      first.exact = true;
-      return first;
+    CompositePrediction prev = RunOnce(core, k, op, touched);
+    int size = std::max(k, 2);
+    for (int g = 0; g < 2; ++g) {
+      size *= 2;
+      bool touchedNext = false;
+      CompositePrediction next = RunOnce(core, size, op, touchedNext);
+      next.grown = g > 0;
+      if (Same(prev, next) && !(next && touchedNext)) {
+        next.exact = true;
+        return next;
+      }
+      prev = next;
     }
-    bool touched2 = false;
-    CompositePrediction second = RunOnce(core, 2 * k, op, touched2);
-    second.grown = true;
-    if (second) second.exact = !touched2;
-    else second.exact = !first;
-    return second;
+    prev.exact = false;
+    return prev;
+  }
+
+  static bool Same(const CompositePrediction& a, const CompositePrediction& b) {
+    if (bool(a) != bool(b)) return false;
+    if (!a) return true;
+    return a.irregular == b.irregular && a.atomicSteps == b.atomicSteps && a.lead == b.lead &&
+           a.partner == b.partner && a.survivor == b.survivor && a.pair5 == b.pair5 && a.pair7 == b.pair7 &&
+           a.other5 == b.other5 && a.other7 == b.other7 && a.created == b.created && a.deleted == b.deleted;
   }
 
   MeshType& m_;
