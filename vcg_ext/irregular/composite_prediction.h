@@ -217,6 +217,7 @@ class CompositePredictor {
     std::unordered_map<int, int> faceTo;
     for (size_t j = 0; j < faces.size(); ++j) faceTo[faces[j]] = int(j);
     s.mesh.textures = m_.textures;
+    EnableLikeSource(s.mesh);
     vcg::tri::Allocator<MeshType>::AddVertices(s.mesh, verts.size());
     vcg::tri::Allocator<MeshType>::AddFaces(s.mesh, faces.size());
     for (size_t i = 0; i < verts.size(); ++i) s.mesh.vert[i].ImportData(m_.vert[size_t(verts[i])]);
@@ -252,6 +253,41 @@ class CompositePredictor {
     }
     s.guard = KRing(s.mesh, border, margin);
     s.n0 = int(s.mesh.vert.size());
+  }
+
+// Optional (Ocf) components, as in MeshLab's CMeshO: the scratch enables what the user's mesh
+// has enabled, so adjacency exists and attributes are copied. No-ops for static components.
+#define FI_MIRROR_OCF(Name)                                                                        \
+  template <class C>                                                                               \
+  static auto Mirror##Name(C& src, C& dst, int)->decltype(src.Is##Name##Enabled(), void()) {      \
+    if (src.Is##Name##Enabled()) dst.Enable##Name();                                               \
+  }                                                                                                \
+  template <class C>                                                                               \
+  static void Mirror##Name(C&, C&, long) {}
+  FI_MIRROR_OCF(FFAdjacency)
+  FI_MIRROR_OCF(VFAdjacency)
+  FI_MIRROR_OCF(Mark)
+  FI_MIRROR_OCF(TexCoord)
+  FI_MIRROR_OCF(WedgeTexCoord)
+  FI_MIRROR_OCF(Color)
+  FI_MIRROR_OCF(Quality)
+  FI_MIRROR_OCF(Normal)
+#undef FI_MIRROR_OCF
+
+  void EnableLikeSource(MeshType& s) {
+    MirrorVFAdjacency(m_.vert, s.vert, 0);
+    MirrorMark(m_.vert, s.vert, 0);
+    MirrorTexCoord(m_.vert, s.vert, 0);
+    MirrorColor(m_.vert, s.vert, 0);
+    MirrorQuality(m_.vert, s.vert, 0);
+    MirrorNormal(m_.vert, s.vert, 0);
+    MirrorFFAdjacency(m_.face, s.face, 0);
+    MirrorVFAdjacency(m_.face, s.face, 0);
+    MirrorMark(m_.face, s.face, 0);
+    MirrorWedgeTexCoord(m_.face, s.face, 0);
+    MirrorColor(m_.face, s.face, 0);
+    MirrorQuality(m_.face, s.face, 0);
+    MirrorNormal(m_.face, s.face, 0);
   }
 
   struct GuardState {
