@@ -154,6 +154,10 @@ void RandomRequests(TMesh& base, const char* name, int rounds, unsigned seed, in
               t.inexactDisagreed);
   for (auto& k : t.byKind) std::printf("  %-24s %3d requests, %3d agree, %3d applied\n", k.first.c_str(), k.second[0], k.second[1], k.second[2]);
   EXPECT_GT(t.applied, 0) << name;
+  // a predictor that always answered "not exact" would pass the agreement check vacuously
+  if (rings >= 12) EXPECT_GE(10 * t.exact, 9 * t.requests) << name << ": too few exact predictions";
+  else EXPECT_GT(t.grown, 0) << name << ": the small region never had to grow";
+  EXPECT_GE(10 * t.agreed, 9 * t.requests) << name;
 }
 }  // namespace
 
