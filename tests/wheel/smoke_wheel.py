@@ -23,6 +23,7 @@ EXPECTED_FILTERS = {
     "meshing_irregular_aggregation",
     "meshing_irregular_atomic_operation",
     "meshing_irregular_automatic_reduction",
+    "meshing_irregular_boundary_operation",
     "meshing_irregular_cancel_quadruple",
     "meshing_irregular_cancel_triple",
     "meshing_irregular_generate",
@@ -75,7 +76,7 @@ def main():
     check("not found" not in ldd, "ldd: every library found")
 
     names = pymeshlab_irregular.load()
-    check(set(names) == EXPECTED_FILTERS, "load() gives the 10 filters: %s" % sorted(names))
+    check(set(names) == EXPECTED_FILTERS, "load() gives the %d filters: %s" % (len(EXPECTED_FILTERS), sorted(names)))
     maps = open("/proc/self/maps").read()
     loaded_common = {l.split()[-1] for l in maps.splitlines() if l.endswith("libmeshlab-common.so")}
     check(loaded_common == {os.path.realpath(os.path.join(pm_lib, "libmeshlab-common.so"))},
