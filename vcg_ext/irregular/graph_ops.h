@@ -430,6 +430,28 @@ class MeshEditor {
     return Result::Ok();
   }
 
+  /// Makes edge e of f and edge ge of g adjacent (FF, both ways), journaling both faces.
+  void LinkFaces(FaceType* f, int e, FaceType* g, int ge) {
+    journal_.SaveFace(f);
+    journal_.SaveFace(g);
+    f->FFp(e) = g;
+    f->FFi(e) = ge;
+    g->FFp(ge) = f;
+    g->FFi(ge) = e;
+  }
+
+  /// The fold check's reference for a split: the area-weighted normal of the star and its
+  /// mean face area.
+  void StarReference(const VertexStar<MeshType>& st, CoordType& ref, ScalarType& refArea) {
+    ref = CoordType(0, 0, 0);
+    refArea = 0;
+    for (auto& c : st.corners) {
+      ref += (c.f->P(1) - c.f->P(0)) ^ (c.f->P(2) - c.f->P(0));
+      refArea += Area(c.f);
+    }
+    refArea /= ScalarType(st.corners.size());
+  }
+
   Result CollapseAt(int ui, int vi, const CoordType& target) {
     Checkpoint cp = Mark();
     VertexType* u = V(ui);
@@ -559,13 +581,9 @@ class MeshEditor {
     std::vector<CornerT> g1, g2;
     for (int k = i; k != j; k = (k + 1) % n) g1.push_back(st.corners[size_t(k)]);
     for (int k = j; k != i; k = (k + 1) % n) g2.push_back(st.corners[size_t(k)]);
-    CoordType ref(0, 0, 0);
-    ScalarType refArea = 0;
-    for (auto& c : st.corners) {
-      ref += (c.f->P(1) - c.f->P(0)) ^ (c.f->P(2) - c.f->P(0));
-      refArea += Area(c.f);
-    }
-    refArea /= ScalarType(n);
+    CoordType ref;
+    ScalarType refArea;
+    StarReference(st, ref, refArea);
     // New positions: each half moves a share s toward the centroid of its own neighbours.
     CoordType c1(0, 0, 0), c2(0, 0, 0);
     for (auto& c : g1) c1 += c.f->V((c.z + 1) % 3)->P();
@@ -612,19 +630,11 @@ class MeshEditor {
       fa->VFp(z) = nullptr; fa->VFi(z) = 0;
       fb->VFp(z) = nullptr; fb->VFi(z) = 0;
     }
-    auto link = [&](FaceType* f, int e, FaceType* g, int ge) {
-      journal_.SaveFace(f);
-      journal_.SaveFace(g);
-      f->FFp(e) = g;
-      f->FFi(e) = ge;
-      g->FFp(ge) = f;
-      g->FFi(ge) = e;
-    };
-    link(fa, 2, ga.f, ga.z);                 // (a, w) ~ (w, a)
-    link(fa, 1, xa.f, (xa.z + 2) % 3);       // (x, a) ~ (a, x)
-    link(fb, 0, gb.f, (gb.z + 2) % 3);       // (w, b) ~ (b, w)
-    link(fb, 1, xb.f, xb.z);                 // (b, x) ~ (x, b)
-    link(fa, 0, fb, 2);                      // (w, x) ~ (x, w)
+    LinkFaces(fa, 2, ga.f, ga.z);                 // (a, w) ~ (w, a)
+    LinkFaces(fa, 1, xa.f, (xa.z + 2) % 3);       // (x, a) ~ (a, x)
+    LinkFaces(fb, 0, gb.f, (gb.z + 2) % 3);       // (w, b) ~ (b, w)
+    LinkFaces(fb, 1, xb.f, xb.z);                 // (b, x) ~ (x, b)
+    LinkFaces(fa, 0, fb, 2);                      // (w, x) ~ (x, w)
     for (FaceType* f : changed) {
       journal_.SaveFace(f);
       UpdateNormal(f);
@@ -654,13 +664,9 @@ class MeshEditor {
     VertexStar<MeshType> st = Star(wi);
     const int n = int(st.corners.size());
     const int i = st.IndexOf(a);
-    CoordType ref(0, 0, 0);
-    ScalarType refArea = 0;
-    for (auto& c : st.corners) {
-      ref += (c.f->P(1) - c.f->P(0)) ^ (c.f->P(2) - c.f->P(0));
-      refArea += Area(c.f);
-    }
-    refArea /= ScalarType(n);
+    CoordType ref;
+    ScalarType refArea;
+    StarReference(st, ref, refArea);
     const CoordType p = w->P(), first = st.neighbors.front()->P(), lastP = st.neighbors.back()->P();
     const CornerT before = st.corners[size_t(i - 1)];  // (w, nb[i-1], a): edge z+2 runs a -> w
     const CornerT after = st.corners[size_t(i)];       // (x, a, nb[i+1]): edge z runs x -> a
@@ -691,16 +697,8 @@ class MeshEditor {
       F->VFp(z) = nullptr;
       F->VFi(z) = 0;
     }
-    auto link = [&](FaceType* f, int e, FaceType* g, int ge) {
-      journal_.SaveFace(f);
-      journal_.SaveFace(g);
-      f->FFp(e) = g;
-      f->FFi(e) = ge;
-      g->FFp(ge) = f;
-      g->FFi(ge) = e;
-    };
-    link(F, 0, before.f, (before.z + 2) % 3);  // (w, a) ~ (a, w)
-    link(F, 1, after.f, after.z);              // (a, x) ~ (x, a)
+    LinkFaces(F, 0, before.f, (before.z + 2) % 3);  // (w, a) ~ (a, w)
+    LinkFaces(F, 1, after.f, after.z);              // (a, x) ~ (x, a)
     F->FFp(2) = F;                             // (x, w): the new boundary edge
     F->FFi(2) = 2;
     for (FaceType* f : changed) {
