@@ -6,22 +6,26 @@
 //    in their tangent plane toward the centroid of their neighbours, then are projected back
 //    onto the original surface. Cheap enough to run on the k-ring of an edit after every step.
 //  * GlobalRelax (eq. 5): minimizes sum_i sum_{j in N_i} |p_j - (p_i + d u_ij)|^2, where d is
-//    the mean edge length of v_i's 1-ring (the paper's global mean fights the size gradation of
-//    adaptive meshes; see README) and u_ij splits the tangent plane of v_i into equal angles
-//    (alpha_ij = alpha_0 + k_j 2 pi / valence, alpha_0 the best rotation). Each vertex is
-//    constrained to its current tangent plane (two unknowns per vertex), the quadratic
-//    problem is solved with Eigen's conjugate gradients (sparse LDLT optional), and vertices are projected back onto the
-//    original surface. Iterated.
+//    the mean edge length of v_i's 1-ring (a documented deviation: the paper's global mean
+//    fights the size gradation of adaptive meshes; see README) and u_ij splits the tangent
+//    plane of v_i into equal angles (alpha_ij = alpha_0 + k_j 2 pi / valence, alpha_0 the best
+//    rotation). Each vertex is constrained to its current tangent plane (two unknowns per
+//    vertex), the quadratic problem is solved with Eigen's conjugate gradients (sparse LDLT
+//    optional), and vertices are projected back onto the original surface. Iterated. Each
+//    round's step is guarded (see GlobalRelax): it never lowers the smallest angle nor raises
+//    the share of triangles under 30 degrees, and lowers eq. 5's energy strictly or is not taken.
 // Both refuse a vertex move that would turn an incident triangle over (fold), and keep
-// vertices on sharp creases fixed when a feature angle is given.
+// vertices on sharp creases fixed when a feature angle is given. Both cost O(region) per
+// sweep or round (plus the global solve): nothing is sized by the mesh.
 //
 // Boundary vertices stay fixed unless RelaxOptions::boundaryCurve is given (a BoundaryCurve
-// made from the original mesh). Then LocalRelax moves each boundary vertex along the boundary:
-// towards the midpoint of its two boundary neighbours, projected onto the original boundary
-// polyline, so the holes keep their shape; a corner (corner angle, the sum of its face angles,
-// differing from 180 degrees by at least RelaxOptions::cornerAngleDeg, default 30: the
-// vertices the boundary valence rule of topology.h gives a regular valence other than 4, and
-// those at exactly 150 degrees) stays fixed. GlobalRelax keeps boundary vertices fixed (they are its boundary conditions).
+// made from the original mesh). Then both relaxations move boundary vertices along the
+// boundary, projected onto the original boundary polyline, so the holes keep their shape:
+// LocalRelax towards the midpoint of the two boundary neighbours, GlobalRelax with one unknown
+// (along the boundary) per boundary vertex in eq. 5. A corner (corner angle, the sum of its
+// face angles, differing from 180 degrees by at least RelaxOptions::cornerAngleDeg, default
+// 30: the vertices the boundary valence rule of topology.h gives a regular valence other than
+// 4, and those at exactly 150 degrees) stays fixed.
 #pragma once
 
 #include <algorithm>
@@ -143,8 +147,8 @@ struct RelaxOptions {
   double solverTolerance = 1e-6;  ///< global, conjugate gradients: relative residual
   int solverMaxIterations = 300;  ///< global, conjugate gradients
   double damping = 1.0;           ///< global: share of the solved displacement applied per round
-  const BoundaryCurve* boundaryCurve = nullptr;  ///< local: if set, boundary vertices slide along it (header)
-  double cornerAngleDeg = 30;     ///< local, with boundaryCurve: |corner angle - 180| >= this stays fixed
+  const BoundaryCurve* boundaryCurve = nullptr;  ///< if set, boundary vertices slide along it (header)
+  double cornerAngleDeg = 30;     ///< with boundaryCurve: |corner angle - 180| >= this stays fixed
 };
 
 struct RelaxReport {
@@ -153,6 +157,13 @@ struct RelaxReport {
   int rejected = 0;   ///< moves refused because they would fold a triangle
   double seconds = 0;
   double solveSeconds = 0;  ///< global: time in the sparse factorization and solve
+  // Global only (see GlobalRelax), over the faces around the free vertices and the terms of
+  // eq. 5 they reach (MeasureRelaxRegion measures the same for either mode):
+  double energyBefore = 0, energyAfter = 0;          ///< eq. 5, 1-ring d_i (Eq5Targets)
+  double minAngleBeforeDeg = 180, minAngleAfterDeg = 180;
+  double shareBelow30Before = 0, shareBelow30After = 0;
+  int rounds = 0;      ///< global: rounds whose guarded step was taken
+  int backtracks = 0;  ///< global: step lengths tried and refused (energy not lower)
 };
 
 /// Vertices within k edges of the seeds (k = 0: the seeds). O(size of the ring).
@@ -257,6 +268,13 @@ bool Movable(MeshType& m, int v, const std::vector<char>* crease) {
   return !m.vert[size_t(v)].IsD() && !(crease && size_t(v) < crease->size() && (*crease)[size_t(v)]);
 }
 
+/// A boundary vertex slides along opt.boundaryCurve unless there is none or it is a corner
+/// (its corner angle differs from 180 degrees by opt.cornerAngleDeg or more).
+template <class MeshType>
+bool SlidesOnBoundary(const VertexStar<MeshType>& st, const RelaxOptions& opt) {
+  return opt.boundaryCurve && !opt.boundaryCurve->Empty() && std::abs(CornerAngleDeg(st) - 180.0) < opt.cornerAngleDeg;
+}
+
 }  // namespace relax_detail
 
 /// Local relaxation of the given vertices (interior, non-crease ones move). O(region x sweeps).
@@ -275,9 +293,7 @@ RelaxReport LocalRelax(MeshType& m, const std::vector<int>& region, const Surfac
       VertexStar<MeshType> st = StarOf<MeshType>(vp);
       if (st.neighbors.empty()) continue;
       if (st.boundary) {
-        if (!opt.boundaryCurve || opt.boundaryCurve->Empty() ||
-            std::abs(CornerAngleDeg(st) - 180.0) >= opt.cornerAngleDeg)
-          continue;  // fixed: no curve to slide on, or a corner
+        if (!relax_detail::SlidesOnBoundary(st, opt)) continue;  // fixed: no curve to slide on, or a corner
         if (it == 0) ++rep.vertices;
         // Along the boundary: towards the midpoint of the two boundary neighbours, onto the
         // original boundary polyline.
@@ -320,104 +336,345 @@ RelaxReport LocalRelax(MeshType& m, const std::vector<int>& region, const Surfac
   return rep;
 }
 
+namespace relax_detail {
+
+/// Smallest angle of a face in degrees, computed exactly as MeasureShape (quality.h) computes
+/// it, so that the guard of GlobalRelax and the measures a caller takes agree to the last bit.
+template <class FaceType>
+double FaceMinAngleDeg(const FaceType* f) {
+  double mn = 180;
+  for (int z = 0; z < 3; ++z) {
+    auto a = f->cP((z + 1) % 3) - f->cP(z), b = f->cP((z + 2) % 3) - f->cP(z);
+    double la = a.Norm(), lb = b.Norm();
+    double ang =
+        (la > 0 && lb > 0) ? std::acos(std::max(-1.0, std::min(1.0, double(a.dot(b)) / (la * lb)))) * 180 / M_PI : 0;
+    mn = std::min(mn, ang);
+  }
+  return mn;
+}
+
+template <class CoordType>
+Eigen::Vector3d ToEigen(const CoordType& p) {
+  return Eigen::Vector3d(double(p[0]), double(p[1]), double(p[2]));
+}
+template <class CoordType>
+CoordType FromEigen(const Eigen::Vector3d& p) {
+  typedef typename CoordType::ScalarType S;
+  return CoordType(S(p.x()), S(p.y()), S(p.z()));
+}
+
+/// What a relaxation of `region` can change, found in O(region) (never sized by the mesh):
+///  * free: the region's vertices that may move (sorted), each with its degrees of freedom:
+///    two inside (its tangent plane), one on the boundary (along the boundary curve; only with
+///    RelaxOptions::boundaryCurve, never at a corner). Deleted, crease and non-manifold
+///    vertices stay fixed.
+///  * centers: the free vertices and their neighbours (sorted): the vertices i whose terms of
+///    eq. 5 change when a free vertex moves (p_i, p_j, d_i and u_ij all depend on positions).
+///  * faces: the faces around the free vertices, the only ones whose shape changes, with the
+///    free vertices of each (faceFree) and the faces of each free vertex (vertFaces).
+template <class MeshType>
+struct RelaxRegion {
+  typedef typename MeshType::FaceType FaceType;
+  std::vector<int> free;
+  std::vector<char> onBoundary;
+  std::unordered_map<int, int> slot;  ///< vertex index -> position in free
+  std::vector<int> centers;
+  std::vector<FaceType*> faces;
+  std::vector<std::vector<int>> faceFree;   ///< per face: positions in free of its free vertices
+  std::vector<std::vector<int>> vertFaces;  ///< per free vertex: positions in faces
+  int Slot(int v) const {
+    auto it = slot.find(v);
+    return it == slot.end() ? -1 : it->second;
+  }
+};
+
+template <class MeshType>
+RelaxRegion<MeshType> MakeRelaxRegion(MeshType& m, const std::vector<int>& regionIn, const RelaxOptions& opt,
+                                      const std::vector<char>* crease) {
+  typedef typename MeshType::FaceType FaceType;
+  RelaxRegion<MeshType> R;
+  std::vector<int> region(regionIn);
+  std::sort(region.begin(), region.end());
+  region.erase(std::unique(region.begin(), region.end()), region.end());
+  for (int v : region) {
+    if (v < 0 || size_t(v) >= m.vert.size() || !Movable(m, v, crease)) continue;
+    VertexStar<MeshType> st = StarOf<MeshType>(&m.vert[size_t(v)]);
+    if (st.neighbors.empty() || !st.manifold) continue;
+    if (st.boundary && !SlidesOnBoundary(st, opt)) continue;
+    R.slot[v] = int(R.free.size());
+    R.free.push_back(v);
+    R.onBoundary.push_back(st.boundary);
+  }
+  std::unordered_map<const FaceType*, int> faceSlot;
+  R.vertFaces.resize(R.free.size());
+  for (size_t i = 0; i < R.free.size(); ++i) {
+    VertexStar<MeshType> st = StarOf<MeshType>(&m.vert[size_t(R.free[i])]);
+    R.centers.push_back(R.free[i]);
+    for (auto n : st.neighbors) R.centers.push_back(int(vcg::tri::Index(m, n)));
+    for (auto& c : st.corners) {
+      auto ins = faceSlot.emplace(c.f, int(R.faces.size()));
+      if (ins.second) {
+        R.faces.push_back(c.f);
+        R.faceFree.emplace_back();
+      }
+      R.faceFree[size_t(ins.first->second)].push_back(int(i));
+      R.vertFaces[i].push_back(ins.first->second);
+    }
+  }
+  std::sort(R.centers.begin(), R.centers.end());
+  R.centers.erase(std::unique(R.centers.begin(), R.centers.end()), R.centers.end());
+  return R;
+}
+
+/// The target offsets d_i u_ij of eq. 5 from v_i (at pi) to its neighbours, in StarOf order.
+/// Inside (sec. 8): u_ij split the tangent plane of v_i into equal angles, alpha_ij = alpha_0 +
+/// k_j 2 pi / l, alpha_0 the circular mean of alpha0_ij - beta_ij. On the boundary (our
+/// extension; the paper's meshes are closed) the l neighbours split the corner angle theta
+/// (sum of the face angles) instead: beta = k theta / (l - 1). d_i is the mean edge length of
+/// the 1-ring of v_i (the documented deviation from the paper's one global d, which fights the
+/// size gradation of adaptive meshes), or dUniform when that is > 0. A star without a normal
+/// (zero-area faces) targets each neighbour along its own direction at distance d_i.
+template <class MeshType>
+void Eq5Targets(const VertexStar<MeshType>& st, const Eigen::Vector3d& pi, double dUniform,
+                std::vector<Eigen::Vector3d>& du) {
+  const int l = int(st.neighbors.size());
+  du.assign(size_t(l), Eigen::Vector3d::Zero());
+  if (l == 0) return;
+  double d = 0;
+  for (auto nb : st.neighbors) d += (ToEigen(nb->cP()) - pi).norm();
+  d = dUniform > 0 ? dUniform : d / l;
+  Eigen::Vector3d N = ToEigen(VertexNormal<MeshType>(st));
+  if (!N.allFinite() || N.norm() < 0.5) {
+    for (int k = 0; k < l; ++k) {
+      Eigen::Vector3d e = ToEigen(st.neighbors[size_t(k)]->cP()) - pi;
+      du[size_t(k)] = e.norm() > 0 ? Eigen::Vector3d(d * e.normalized()) : Eigen::Vector3d::Zero();
+    }
+    return;
+  }
+  const Eigen::Vector3d a = std::abs(N.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  const Eigen::Vector3d t1 = (a - N * N.dot(a)).normalized(), t2 = N.cross(t1);
+  const double spacing = st.boundary ? (l > 1 ? CornerAngleDeg(st) * M_PI / 180.0 / (l - 1) : 0) : 2 * M_PI / l;
+  double sx = 0, sy = 0;
+  for (int k = 0; k < l; ++k) {
+    const Eigen::Vector3d e = ToEigen(st.neighbors[size_t(k)]->cP()) - pi;
+    const double a0 = std::atan2(e.dot(t2), e.dot(t1));
+    sx += std::cos(a0 - k * spacing);
+    sy += std::sin(a0 - k * spacing);
+  }
+  const double alpha0 = std::atan2(sy, sx);
+  for (int k = 0; k < l; ++k) {
+    const double alpha = alpha0 + k * spacing;
+    du[size_t(k)] = d * (std::cos(alpha) * t1 + std::sin(alpha) * t2);
+  }
+}
+
+/// Eq. 5 restricted to the terms of `centers`: sum_i sum_{j in N_i} |p_j - (p_i + d_i u_ij)|^2.
+/// Over RelaxRegion::centers this differs from the whole mesh's eq. 5 by a constant (the terms
+/// no free vertex reaches), so it goes down exactly when the whole mesh's does. O(centers).
+template <class MeshType>
+double Eq5Energy(MeshType& m, const std::vector<int>& centers, double dUniform) {
+  double e = 0;
+  std::vector<Eigen::Vector3d> du;
+  for (int v : centers) {
+    if (m.vert[size_t(v)].IsD()) continue;
+    VertexStar<MeshType> st = StarOf<MeshType>(&m.vert[size_t(v)]);
+    if (st.neighbors.empty() || !st.manifold) continue;
+    const Eigen::Vector3d pi = ToEigen(m.vert[size_t(v)].cP());
+    Eq5Targets<MeshType>(st, pi, dUniform, du);
+    for (size_t k = 0; k < st.neighbors.size(); ++k)
+      e += (ToEigen(st.neighbors[k]->cP()) - pi - du[k]).squaredNorm();
+  }
+  return e;
+}
+
+/// Mean length of the edges around the centers (the paper's d, taken over the region).
+template <class MeshType>
+double MeanEdgeLength(MeshType& m, const std::vector<int>& centers) {
+  double sum = 0;
+  long count = 0;
+  for (int v : centers) {
+    if (m.vert[size_t(v)].IsD()) continue;
+    for (auto nb : StarOf<MeshType>(&m.vert[size_t(v)]).neighbors) {
+      sum += (ToEigen(nb->cP()) - ToEigen(m.vert[size_t(v)].cP())).norm();
+      ++count;
+    }
+  }
+  return count ? sum / double(count) : 0;
+}
+
+}  // namespace relax_detail
+
+/// Eq. 5's energy and the triangle shape over what a relaxation of `region` can change (see
+/// relax_detail::RelaxRegion; the same free vertices GlobalRelax would move with these options).
+/// O(region).
+struct RelaxMeasures {
+  double energy = 0;         ///< eq. 5 over the terms the free vertices reach (1-ring d_i; see Eq5Targets)
+  double minAngleDeg = 180;  ///< smallest angle of the faces around the free vertices
+  double shareBelow30 = 0;   ///< share of those faces whose smallest angle is under 30 degrees
+  int faces = 0;
+};
+
+template <class MeshType>
+RelaxMeasures MeasureRelaxRegion(MeshType& m, const std::vector<int>& region, const RelaxOptions& opt,
+                                 const std::vector<char>* crease = nullptr) {
+  const relax_detail::RelaxRegion<MeshType> R = relax_detail::MakeRelaxRegion(m, region, opt, crease);
+  RelaxMeasures r;
+  const double dUniform = opt.uniformEdgeLength ? relax_detail::MeanEdgeLength(m, R.centers) : 0;
+  r.energy = relax_detail::Eq5Energy(m, R.centers, dUniform);
+  long below = 0;
+  for (auto* f : R.faces) {
+    const double a = relax_detail::FaceMinAngleDeg(f);
+    r.minAngleDeg = std::min(r.minAngleDeg, a);
+    below += a < 30;
+  }
+  r.faces = int(R.faces.size());
+  r.shareBelow30 = R.faces.empty() ? 0 : double(below) / double(R.faces.size());
+  return r;
+}
+
 /// Global relaxation (eq. 5) of the given vertices; the others are fixed boundary conditions.
+///
+/// Each round solves the quadratic problem of sec. 8 (targets d_i u_ij frozen at the round's
+/// start, each free vertex on its tangent plane, or on the boundary's tangent line when it
+/// slides along opt.boundaryCurve), then takes a guarded step: the positions
+/// p(t) = project(old + t (solved - old)), t = 1, 1/2, ..., 1/64, projected onto the original
+/// surface (onto the original boundary polyline for boundary vertices). At each t, a face that
+/// folds, or whose smallest angle falls below its floor, sends its free vertices back to their
+/// old positions, and so on until no face around a moved vertex is bad. The floor of a face
+/// is the round's smallest angle m0 if the face was under 30 degrees, else max(30, m0) (and
+/// at least half its own old angle). The step is taken at the first t where something moved
+/// and eq. 5's energy is strictly lower; if no t qualifies, the round restores every position
+/// and the relaxation stops. Postconditions (over the faces around the free vertices, hence
+/// over the whole mesh): the smallest angle is no lower and the share of triangles under 30
+/// degrees no higher than before the call; eq. 5's energy is strictly lower whenever
+/// rep.moved > 0; moved vertices lie on the original surface (boundary ones on the original
+/// boundary) when `original` is given and opt.reproject. O(region x rounds), plus the solver.
 template <class MeshType>
 RelaxReport GlobalRelax(MeshType& m, const std::vector<int>& region, const SurfaceProjector* original,
                         const RelaxOptions& opt, const std::vector<char>* creaseIn = nullptr) {
   typedef typename MeshType::CoordType CoordType;
+  typedef typename MeshType::FaceType FaceType;
   typedef Eigen::Triplet<double> T;
+  using relax_detail::FromEigen;
+  using relax_detail::ToEigen;
   auto t0 = std::chrono::steady_clock::now();
   RelaxReport rep;
-
-  // Unknowns: (a, b) per free vertex, p = c + a t1 + b t2 in its tangent plane.
-  std::vector<int> unknown(m.vert.size(), -1);
-  std::vector<int> freeV;
-  for (int v : region) {
-    if (!relax_detail::Movable(m, v, creaseIn)) continue;
-    VertexStar<MeshType> st = StarOf<MeshType>(&m.vert[size_t(v)]);
-    if (st.boundary || st.neighbors.empty()) continue;
-    unknown[size_t(v)] = int(freeV.size());
-    freeV.push_back(v);
-  }
-  rep.vertices = int(freeV.size());
-  if (freeV.empty()) return rep;
-  const int n = int(freeV.size());
-
-  for (int it = 0; it < opt.iterations; ++it) {
-    // Tangent frames and the target directions u_ij.
-    std::vector<Eigen::Vector3d> c(static_cast<size_t>(n)), t1(static_cast<size_t>(n)), t2(static_cast<size_t>(n));
-    double lsum = 0;
-    long lcount = 0;
-    std::vector<VertexStar<MeshType>> stars(static_cast<size_t>(n));
-    std::vector<double> scale(static_cast<size_t>(n), 0.0);  // mean 1-ring edge length
-    for (int i = 0; i < n; ++i) {
-      auto* vp = &m.vert[size_t(freeV[size_t(i)])];
-      stars[size_t(i)] = StarOf<MeshType>(vp);
-      CoordType nn = relax_detail::VertexNormal<MeshType>(stars[size_t(i)]);
-      Eigen::Vector3d N(nn[0], nn[1], nn[2]);
-      Eigen::Vector3d a = std::abs(N.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
-      t1[size_t(i)] = (a - N * N.dot(a)).normalized();
-      t2[size_t(i)] = N.cross(t1[size_t(i)]);
-      c[size_t(i)] = Eigen::Vector3d(vp->P()[0], vp->P()[1], vp->P()[2]);
-      for (auto nb : stars[size_t(i)].neighbors) {
-        const double l = double((nb->P() - vp->P()).Norm());
-        lsum += l;
-        scale[size_t(i)] += l;
-        ++lcount;
-      }
-      scale[size_t(i)] /= double(stars[size_t(i)].neighbors.size());
+  const relax_detail::RelaxRegion<MeshType> R = relax_detail::MakeRelaxRegion(m, region, opt, creaseIn);
+  const int n = int(R.free.size()), nf = int(R.faces.size());
+  rep.vertices = n;
+  // The paper's d, if asked for, is taken once per call over the region (never the whole mesh).
+  const double dUniform = opt.uniformEdgeLength ? relax_detail::MeanEdgeLength(m, R.centers) : 0;
+  double energy = relax_detail::Eq5Energy(m, R.centers, dUniform);
+  auto shape = [&](double& minAngle, double& share) {
+    long below = 0;
+    minAngle = 180;
+    for (auto* f : R.faces) {
+      const double a = relax_detail::FaceMinAngleDeg(f);
+      minAngle = std::min(minAngle, a);
+      below += a < 30;
     }
-    // The paper's d is the mean edge length of the mesh; on adaptive meshes (edge lengths that
-    // vary over the surface) that fights the size gradation, so d_i is the mean edge length of
-    // the 1-ring of v_i, optionally blended with the global mean.
-    const double dGlobal = lsum / double(std::max(1L, lcount));
+    share = nf ? double(below) / nf : 0;
+  };
+  rep.energyBefore = energy;
+  shape(rep.minAngleBeforeDeg, rep.shareBelow30Before);
+
+  // Columns: two per interior free vertex (tangent plane), one per sliding boundary vertex.
+  std::vector<int> col(size_t(n), 0);
+  int cols = 0;
+  for (int i = 0; i < n; ++i) {
+    col[size_t(i)] = cols;
+    cols += R.onBoundary[size_t(i)] ? 1 : 2;
+  }
+  std::vector<CoordType> old(static_cast<size_t>(n));
+  std::vector<Eigen::Vector3d> solved(static_cast<size_t>(n)), b1(static_cast<size_t>(n)), b2(static_cast<size_t>(n));
+  std::vector<double> angleBefore(static_cast<size_t>(nf)), floorAngle(static_cast<size_t>(nf));
+  std::vector<CoordType> normalBefore(static_cast<size_t>(nf));
+  std::vector<char> queued(static_cast<size_t>(nf), 0), sentBack(static_cast<size_t>(n), 0);
+  std::vector<Eigen::Vector3d> du;
+  auto restore = [&]() {
+    for (int i = 0; i < n; ++i) m.vert[size_t(R.free[size_t(i)])].P() = old[size_t(i)];
+  };
+  auto isMoved = [&](int i) { return m.vert[size_t(R.free[size_t(i)])].cP() != old[size_t(i)]; };
+  auto faceBad = [&](int fi) {
+    const FaceType* f = R.faces[size_t(fi)];
+    bool changed = false;
+    for (int i : R.faceFree[size_t(fi)]) changed = changed || isMoved(i);
+    if (!changed) return false;  // as at the round's start: fine by definition
+    const CoordType nb = normalBefore[size_t(fi)], na = vcg::TriangleNormal(*f);
+    const double lb = nb.Norm(), la = na.Norm();
+    if (la <= 1e-12 * (lb + 1e-30)) return true;
+    if (lb > 0 && double(nb.dot(na)) / (lb * la) < opt.minFaceTurnCos) return true;
+    return relax_detail::FaceMinAngleDeg(f) < floorAngle[size_t(fi)];
+  };
+
+  for (int it = 0; it < opt.iterations && n > 0; ++it) {
+    // The round's start: positions, face shapes and floors, frames.
+    double m0 = 180;
+    for (int fi = 0; fi < nf; ++fi) {
+      angleBefore[size_t(fi)] = relax_detail::FaceMinAngleDeg(R.faces[size_t(fi)]);
+      normalBefore[size_t(fi)] = vcg::TriangleNormal(*R.faces[size_t(fi)]);
+      m0 = std::min(m0, angleBefore[size_t(fi)]);
+    }
+    for (int fi = 0; fi < nf; ++fi) {
+      const double a = angleBefore[size_t(fi)];
+      floorAngle[size_t(fi)] = a < 30 ? std::max(m0, 0.5 * a) : std::max(30.0, m0);
+    }
+    for (int i = 0; i < n; ++i) {
+      auto* vp = &m.vert[size_t(R.free[size_t(i)])];
+      old[size_t(i)] = vp->P();
+      VertexStar<MeshType> st = StarOf<MeshType>(vp);
+      if (R.onBoundary[size_t(i)]) {
+        // the boundary's direction at v: from its first to its last boundary neighbour
+        Eigen::Vector3d t = ToEigen(st.neighbors.back()->cP()) - ToEigen(st.neighbors.front()->cP());
+        b1[size_t(i)] = t.norm() > 0 ? Eigen::Vector3d(t.normalized()) : Eigen::Vector3d::Zero();
+        b2[size_t(i)] = Eigen::Vector3d::Zero();
+        continue;
+      }
+      Eigen::Vector3d N = ToEigen(relax_detail::VertexNormal<MeshType>(st));
+      if (!N.allFinite() || N.norm() < 0.5) {  // no tangent plane: this vertex stays
+        b1[size_t(i)] = b2[size_t(i)] = Eigen::Vector3d::Zero();
+        continue;
+      }
+      Eigen::Vector3d a = std::abs(N.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+      b1[size_t(i)] = (a - N * N.dot(a)).normalized();
+      b2[size_t(i)] = N.cross(b1[size_t(i)]);
+    }
+    // Rows: one 3-vector residual p_j - p_i - d_i u_ij per term of eq. 5 that a free vertex
+    // reaches; p = old + B x for free vertices, fixed otherwise.
     std::vector<T> trip;
     std::vector<double> rhs;
     int row = 0;
-    auto pos = [&](int v) {
-      return Eigen::Vector3d(m.vert[size_t(v)].P()[0], m.vert[size_t(v)].P()[1], m.vert[size_t(v)].P()[2]);
-    };
-    for (int i = 0; i < n; ++i) {
-      const auto& st = stars[size_t(i)];
-      const int l = int(st.neighbors.size());
-      // alpha0 = circular mean of (alpha0_ij - beta_ij), beta_ij = k_j 2 pi / l (sec. 8)
-      double sx = 0, sy = 0;
-      std::vector<int> nbIdx(static_cast<size_t>(l));
-      for (int k = 0; k < l; ++k) {
-        nbIdx[size_t(k)] = int(vcg::tri::Index(m, st.neighbors[size_t(k)]));
-        Eigen::Vector3d e = pos(nbIdx[size_t(k)]) - c[size_t(i)];
-        double a0 = std::atan2(e.dot(t2[size_t(i)]), e.dot(t1[size_t(i)]));
-        double beta = 2 * M_PI * k / l;
-        sx += std::cos(a0 - beta);
-        sy += std::sin(a0 - beta);
+    auto addColumns = [&](int r, int i, double sign) {
+      if (i < 0) return;
+      for (int q = 0; q < 3; ++q) {
+        trip.emplace_back(r + q, col[size_t(i)], sign * b1[size_t(i)][q]);
+        if (!R.onBoundary[size_t(i)]) trip.emplace_back(r + q, col[size_t(i)] + 1, sign * b2[size_t(i)][q]);
       }
-      const double alpha0 = std::atan2(sy, sx);
-      for (int k = 0; k < l; ++k) {
-        const double alpha = alpha0 + 2 * M_PI * k / l;
-        Eigen::Vector3d u = std::cos(alpha) * t1[size_t(i)] + std::sin(alpha) * t2[size_t(i)];
-        const int j = nbIdx[size_t(k)];
-        const int uj = unknown[size_t(j)];
-        // residual r = p_j - p_i - d u ; p_i = c_i + T_i x_i ; p_j = c_j + T_j x_j (or fixed)
-        const double d = opt.uniformEdgeLength ? dGlobal : scale[size_t(i)];
-        Eigen::Vector3d r0 = pos(j) - c[size_t(i)] - d * u;
-        for (int q = 0; q < 3; ++q) {
-          trip.emplace_back(row + q, 2 * i, -t1[size_t(i)][q]);
-          trip.emplace_back(row + q, 2 * i + 1, -t2[size_t(i)][q]);
-          if (uj >= 0) {
-            trip.emplace_back(row + q, 2 * uj, t1[size_t(uj)][q]);
-            trip.emplace_back(row + q, 2 * uj + 1, t2[size_t(uj)][q]);
-          }
-          rhs.push_back(-r0[q]);
-        }
+    };
+    for (int v : R.centers) {
+      if (m.vert[size_t(v)].IsD()) continue;
+      VertexStar<MeshType> st = StarOf<MeshType>(&m.vert[size_t(v)]);
+      if (st.neighbors.empty() || !st.manifold) continue;
+      const Eigen::Vector3d pi = ToEigen(m.vert[size_t(v)].cP());
+      relax_detail::Eq5Targets<MeshType>(st, pi, dUniform, du);
+      const int si = R.Slot(v);
+      for (size_t k = 0; k < st.neighbors.size(); ++k) {
+        const int j = int(vcg::tri::Index(m, st.neighbors[k]));
+        const int sj = R.Slot(j);
+        if (si < 0 && sj < 0) continue;  // a constant term
+        const Eigen::Vector3d r0 = ToEigen(st.neighbors[k]->cP()) - pi - du[k];
+        addColumns(row, si, -1.0);
+        addColumns(row, sj, 1.0);
+        for (int q = 0; q < 3; ++q) rhs.push_back(-r0[q]);
         row += 3;
       }
     }
-    Eigen::SparseMatrix<double> A(row, 2 * n);
+    Eigen::SparseMatrix<double> A(row, cols);
     A.setFromTriplets(trip.begin(), trip.end());
     Eigen::VectorXd b = Eigen::Map<Eigen::VectorXd>(rhs.data(), long(rhs.size()));
     auto ts = std::chrono::steady_clock::now();
     Eigen::SparseMatrix<double> AtA = A.transpose() * A;
-    for (int k = 0; k < 2 * n; ++k) AtA.coeffRef(k, k) += opt.regularization;
+    for (int k = 0; k < cols; ++k) AtA.coeffRef(k, k) += opt.regularization;
     Eigen::VectorXd x;
     Eigen::ComputationInfo info;
     Eigen::VectorXd atb = A.transpose() * b;
@@ -437,23 +694,68 @@ RelaxReport GlobalRelax(MeshType& m, const std::vector<int>& region, const Surfa
       info = solver.info() == Eigen::NoConvergence ? Eigen::Success : solver.info();  // best effort is fine
     }
     rep.solveSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - ts).count();
-    if (info != Eigen::Success) break;
+    if (info != Eigen::Success || !x.allFinite()) break;
     for (int i = 0; i < n; ++i) {
-      auto* vp = &m.vert[size_t(freeV[size_t(i)])];
-      Eigen::Vector3d p = c[size_t(i)] + opt.damping * (x[2 * i] * t1[size_t(i)] + x[2 * i + 1] * t2[size_t(i)]);
-      CoordType q(typename CoordType::ScalarType(p.x()), typename CoordType::ScalarType(p.y()),
-                  typename CoordType::ScalarType(p.z()));
-      if (opt.reproject && original) q = CoordType::Construct(original->Closest(vcg::Point3f::Construct(q)));
-      if (relax_detail::MoveHurts<MeshType>(stars[size_t(i)], vp, q, opt.minFaceTurnCos)) {
-        ++rep.rejected;
-        continue;
-      }
-      vp->P() = q;
-      ++rep.moved;
+      Eigen::Vector3d dx = x[col[size_t(i)]] * b1[size_t(i)];
+      if (!R.onBoundary[size_t(i)]) dx += x[col[size_t(i)] + 1] * b2[size_t(i)];
+      solved[size_t(i)] = ToEigen(old[size_t(i)]) + opt.damping * dx;
     }
+    // The guarded step.
+    bool taken = false;
+    for (double t = 1; t >= 1.0 / 64 && !taken; t *= 0.5) {
+      for (int i = 0; i < n; ++i) {
+        const Eigen::Vector3d o = ToEigen(old[size_t(i)]);
+        CoordType q = FromEigen<CoordType>(o + t * (solved[size_t(i)] - o));
+        if (R.onBoundary[size_t(i)])
+          q = opt.boundaryCurve->Closest(q);
+        else if (opt.reproject && original)
+          q = CoordType::Construct(original->Closest(vcg::Point3f::Construct(q)));
+        const bool finite = std::isfinite(double(q[0])) && std::isfinite(double(q[1])) && std::isfinite(double(q[2]));
+        m.vert[size_t(R.free[size_t(i)])].P() = finite ? q : old[size_t(i)];
+        sentBack[size_t(i)] = 0;
+      }
+      // Send the vertices of bad faces back, until no face around a moved vertex is bad
+      // (terminates: every pass sends a vertex back for good; all back is the round's start).
+      std::vector<int> queue;
+      for (int fi = 0; fi < nf; ++fi) queue.push_back(fi), queued[size_t(fi)] = 1;
+      int sent = 0;
+      while (!queue.empty()) {
+        const int fi = queue.back();
+        queue.pop_back();
+        queued[size_t(fi)] = 0;
+        if (!faceBad(fi)) continue;
+        for (int i : R.faceFree[size_t(fi)]) {
+          if (!isMoved(i)) continue;
+          m.vert[size_t(R.free[size_t(i)])].P() = old[size_t(i)];
+          sentBack[size_t(i)] = 1;
+          ++sent;
+          for (int g : R.vertFaces[size_t(i)])
+            if (!queued[size_t(g)]) queue.push_back(g), queued[size_t(g)] = 1;
+        }
+      }
+      int moved = 0;
+      for (int i = 0; i < n; ++i) moved += isMoved(i);
+      if (moved == 0) continue;
+      const double e = relax_detail::Eq5Energy(m, R.centers, dUniform);
+      if (e < energy) {
+        energy = e;
+        rep.moved += moved;
+        rep.rejected += sent;
+        taken = true;
+      } else {
+        restore();
+        ++rep.backtracks;
+      }
+    }
+    if (!taken) {
+      restore();
+      break;  // no step lowers eq. 5 without hurting a triangle: converged as far as the guard allows
+    }
+    ++rep.rounds;
   }
-  for (int v : freeV)
-    for (auto& cc : StarOf<MeshType>(&m.vert[size_t(v)]).corners) cc.f->N() = vcg::TriangleNormal(*cc.f).Normalize();
+  for (auto* f : R.faces) f->N() = vcg::TriangleNormal(*f).Normalize();
+  rep.energyAfter = energy;
+  shape(rep.minAngleAfterDeg, rep.shareBelow30After);
   rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return rep;
 }
