@@ -194,10 +194,17 @@ std::vector<FilterSpec> MakeCatalog() {
   f.info =
       "Improves the shape of triangles without changing connectivity (Li et al., sec. 8). <b>Local</b>: vertices "
       "move one at a time in their tangent plane toward the centroid of their neighbours (Turk 1992). "
-      "<b>Global</b>: solves the quadratic energy of eq. 5 (uniform edge lengths, equal angles around each vertex) "
-      "with each vertex constrained to its tangent plane, with Eigen's conjugate gradient solver. Moved vertices "
-      "are projected back onto the mesh as it was before the filter. Vertices on sharp creases stay fixed. Logs "
-      "and returns triangle quality and the Hausdorff distance to the input before and after.";
+      "<b>Global</b>: solves the quadratic energy of eq. 5 (uniform edge lengths, equal angles around each vertex; "
+      "the target length is each vertex's mean 1-ring edge length, not one global length, so adaptive sizing "
+      "stays) with each vertex constrained to its tangent plane, with Eigen's conjugate gradient solver, then "
+      "takes a guarded step: shortened, and triangles that would get worse sent back, so that the smallest angle "
+      "never drops, the share of triangles under 30 degrees never rises and the energy strictly drops whenever "
+      "anything moves; it stops when no such step is left. Moved vertices are projected back onto the mesh as it "
+      "was before the filter; boundary vertices slide along the boundary as it was, corners (corner angle 30 "
+      "degrees or more away from 180) stay. Vertices on sharp creases stay fixed. Logs and returns triangle "
+      "quality (min_angle, mean_min_angle, percent_below_30, edge_length_spread, each _before and _after), the "
+      "energy of eq. 5 over the relaxed region (energy_before, energy_after) and the Hausdorff distance to the "
+      "input (hausdorff_percent).";
   f.params = {
       Enum("mode", 0, {"Local", "Global"}, "Mode",
            "Local: one vertex at a time (fast). Global: sparse least-squares solve of eq. 5."),

@@ -471,9 +471,12 @@ void Eq5Targets(const VertexStar<MeshType>& st, const Eigen::Vector3d& pi, doubl
 /// Eq. 5 restricted to the terms of `centers`: sum_i sum_{j in N_i} |p_j - (p_i + d_i u_ij)|^2.
 /// Over RelaxRegion::centers this differs from the whole mesh's eq. 5 by a constant (the terms
 /// no free vertex reaches), so it goes down exactly when the whole mesh's does. O(centers).
+/// scale, if given, receives the sum of the squared lengths of the same terms' edges (the
+/// energy's natural unit).
 template <class MeshType>
-double Eq5Energy(MeshType& m, const std::vector<int>& centers, double dUniform) {
+double Eq5Energy(MeshType& m, const std::vector<int>& centers, double dUniform, double* scale = nullptr) {
   double e = 0;
+  if (scale) *scale = 0;
   std::vector<Eigen::Vector3d> du;
   for (int v : centers) {
     if (m.vert[size_t(v)].IsD()) continue;
@@ -481,8 +484,10 @@ double Eq5Energy(MeshType& m, const std::vector<int>& centers, double dUniform) 
     if (st.neighbors.empty() || !st.manifold) continue;
     const Eigen::Vector3d pi = ToEigen(m.vert[size_t(v)].cP());
     Eq5Targets<MeshType>(st, pi, dUniform, du);
-    for (size_t k = 0; k < st.neighbors.size(); ++k)
+    for (size_t k = 0; k < st.neighbors.size(); ++k) {
       e += (ToEigen(st.neighbors[k]->cP()) - pi - du[k]).squaredNorm();
+      if (scale) *scale += (ToEigen(st.neighbors[k]->cP()) - pi).squaredNorm();
+    }
   }
   return e;
 }
@@ -543,7 +548,8 @@ RelaxMeasures MeasureRelaxRegion(MeshType& m, const std::vector<int>& region, co
 /// old positions, and so on until no face around a moved vertex is bad. The floor of a face
 /// is the round's smallest angle m0 if the face was under 30 degrees, else max(30, m0) (and
 /// at least half its own old angle). The step is taken at the first t where something moved
-/// and eq. 5's energy is strictly lower; if no t qualifies, the round restores every position
+/// and eq. 5's energy is lower by more than rounding noise (1e-9 of the sum of the squared
+/// edge lengths of its terms); if no t qualifies, the round restores every position
 /// and the relaxation stops. Postconditions (over the faces around the free vertices, hence
 /// over the whole mesh): the smallest angle is no lower and the share of triangles under 30
 /// degrees no higher than before the call; eq. 5's energy is strictly lower whenever
@@ -564,7 +570,10 @@ RelaxReport GlobalRelax(MeshType& m, const std::vector<int>& region, const Surfa
   rep.vertices = n;
   // The paper's d, if asked for, is taken once per call over the region (never the whole mesh).
   const double dUniform = opt.uniformEdgeLength ? relax_detail::MeanEdgeLength(m, R.centers) : 0;
-  double energy = relax_detail::Eq5Energy(m, R.centers, dUniform);
+  double scale = 0;
+  double energy = relax_detail::Eq5Energy(m, R.centers, dUniform, &scale);
+  // A step must lower eq. 5 by more than rounding noise (float positions) to count as progress.
+  const double noise = 1e-9 * scale;
   auto shape = [&](double& minAngle, double& share) {
     long below = 0;
     minAngle = 180;
@@ -737,7 +746,7 @@ RelaxReport GlobalRelax(MeshType& m, const std::vector<int>& region, const Surfa
       for (int i = 0; i < n; ++i) moved += isMoved(i);
       if (moved == 0) continue;
       const double e = relax_detail::Eq5Energy(m, R.centers, dUniform);
-      if (e < energy) {
+      if (e < energy - noise) {
         energy = e;
         rep.moved += moved;
         rep.rejected += sent;
