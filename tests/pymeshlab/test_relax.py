@@ -58,9 +58,13 @@ def test_example_global_relaxation_on_the_bunny():
 @pytest.mark.parametrize("name,mode,iterations", [("knot1.off", "Local", 10), ("elephant.off", "Global", 3),
                                                   ("fandisk.off", "Local", 5)])
 def test_hausdorff_distance_against_the_oracle(name, mode, iterations):
-    """The filter's sampled Hausdorff distance never exceeds the exact one and comes within 20%
-    of it; MeshLab's own sampled measure agrees with the oracle the same way (a check of the
-    oracle: no sampled distance may exceed its exact maximum)."""
+    """The filter's sampled Hausdorff distance never exceeds the oracle's and comes within 20%
+    of it (the filter samples vertices, edge midpoints and centroids, a subset of the oracle's
+    points); MeshLab's own measure agrees with the oracle within 20% below and 2% above. The
+    oracle's distances are exact per point, but its maximum is taken over fixed samples
+    (vertices, two points per edge, four per face), so it is a lower bound of the true
+    Hausdorff distance: MeshLab's 50000 random samples can find a point a little farther (on
+    elephant after 3 global rounds: 0.3962% against the oracle's 0.3916%)."""
     ms = load(name)
     t0 = tri(ms)
     out = apply(ms, RELAX, mode=mode, iterations=iterations, region="All", reproject=True, featureangle=60)
@@ -69,7 +73,7 @@ def test_hausdorff_distance_against_the_oracle(name, mode, iterations):
     assert 0 < exact < 1
     assert 0.8 * exact <= out["hausdorff_percent"] <= exact * (1 + 1e-9) + 1e-12
     pm = pymeshlab_hausdorff_percent(t0, t1)
-    assert 0.8 * exact <= pm <= exact * (1 + 1e-6) + 1e-9, (pm, exact)
+    assert 0.8 * exact <= pm <= exact * 1.02 + 1e-9, (pm, exact)
     assert_shape_values(out, t0, t1)
 
 
@@ -198,27 +202,30 @@ def eq5_energy(t, centers):
     p = t.vertices
     fans = _fans(t)
     corner = np.radians(fo.corner_angles(t))
-    total = 0.0
+    groups = {}  # (valence, boundary) -> centre ids, rings: vectorized per group
     for i in np.nonzero(centers)[0].tolist():
         ring, boundary = fans[i]
-        if not ring:
-            continue
-        e = p[ring] - p[i]
-        k = len(ring)
-        nrm = np.zeros(3)
-        for a, b in zip(ring, ring[1:] + ([] if boundary else ring[:1])):
-            nrm += np.cross(p[a] - p[i], p[b] - p[i])
-        nrm /= np.linalg.norm(nrm)
-        t1 = np.cross(nrm, [1.0, 0, 0] if abs(nrm[0]) < 0.9 else [0, 1.0, 0])
-        t1 /= np.linalg.norm(t1)
+        if ring:
+            groups.setdefault((len(ring), boundary), []).append((i, ring))
+    total = 0.0
+    for (k, boundary), members in groups.items():
+        ids = np.array([i for i, _ in members])
+        e = p[np.array([r for _, r in members])] - p[ids][:, None, :]  # (n, k, 3)
+        nrm = np.cross(e[:, :-1], e[:, 1:]).sum(axis=1)
+        if not boundary:
+            nrm += np.cross(e[:, -1], e[:, 0])
+        nrm /= np.linalg.norm(nrm, axis=1)[:, None]
+        axis = np.where((np.abs(nrm[:, 0]) < 0.9)[:, None], [1.0, 0, 0], [0, 1.0, 0])
+        t1 = np.cross(nrm, axis)
+        t1 /= np.linalg.norm(t1, axis=1)[:, None]
         t2 = np.cross(nrm, t1)
-        spacing = corner[i] / (k - 1) if boundary else 2 * np.pi / k
-        beta = spacing * np.arange(k)
-        a0 = np.arctan2(e @ t2, e @ t1)
-        alpha = np.arctan2(np.sin(a0 - beta).sum(), np.cos(a0 - beta).sum()) + beta
-        d = np.linalg.norm(e, axis=1).mean()
-        u = np.cos(alpha)[:, None] * t1 + np.sin(alpha)[:, None] * t2
-        total += float(((e - d * u) ** 2).sum())
+        spacing = corner[ids] / (k - 1) if boundary else np.full(len(ids), 2 * np.pi / k)
+        beta = spacing[:, None] * np.arange(k)
+        a0 = np.arctan2((e * t2[:, None]).sum(-1), (e * t1[:, None]).sum(-1))
+        alpha = np.arctan2(np.sin(a0 - beta).sum(1), np.cos(a0 - beta).sum(1))[:, None] + beta
+        d = np.linalg.norm(e, axis=2).mean(axis=1)
+        u = np.cos(alpha)[..., None] * t1[:, None] + np.sin(alpha)[..., None] * t2[:, None]
+        total += float(((e - d[:, None, None] * u) ** 2).sum())
     return total
 
 
