@@ -69,34 +69,23 @@ void BM_GlobalRoundWholeMesh(benchmark::State& st) {
   Counters(st, f);
 }
 
-// What a composite operation runs after each step: 5 local sweeps over the 2-ring of an edit.
-void BM_LocalTwoRingAfterEdit(benchmark::State& st) {
+// What a composite operation runs after each step: the relaxation of the 2-ring of an edit
+// (5 local sweeps, or 3 global rounds). O(region): its time must not grow with the mesh.
+void TwoRingAfterEdit(benchmark::State& st, RelaxMode mode) {
   Fixture* f = Load(int(st.range(0)));
   RelaxOptions o;
-  o.iterations = 5;
+  o.mode = mode;
+  o.iterations = mode == RelaxMode::Global ? 3 : 5;
   size_t k = 0;
   for (auto _ : st) {
     int v = int((k++ * 7919) % f->m.vert.size());
     std::vector<int> ring = KRing(f->m, {v}, 2);
-    LocalRelax(f->m, ring, f->original.get(), o);
+    Relax(f->m, ring, f->original.get(), o);
   }
   Counters(st, f);
 }
-
-// The global relaxation of the 2-ring around one edit: O(region), whatever the mesh's size.
-void BM_GlobalTwoRingAfterEdit(benchmark::State& st) {
-  Fixture* f = Load(int(st.range(0)));
-  RelaxOptions o;
-  o.mode = RelaxMode::Global;
-  o.iterations = 3;
-  size_t k = 0;
-  for (auto _ : st) {
-    int v = int((k++ * 7919) % f->m.vert.size());
-    std::vector<int> ring = KRing(f->m, {v}, 2);
-    GlobalRelax(f->m, ring, f->original.get(), o);
-  }
-  Counters(st, f);
-}
+void BM_LocalTwoRingAfterEdit(benchmark::State& st) { TwoRingAfterEdit(st, RelaxMode::Local); }
+void BM_GlobalTwoRingAfterEdit(benchmark::State& st) { TwoRingAfterEdit(st, RelaxMode::Global); }
 
 const char* kQualityMesh[] = {"bear.off", "bunny00.off", "fandisk.off"};
 
