@@ -37,6 +37,12 @@
 //                    collapses b into c (c: 3 + 4 - 3 = 4, the v3 is gone, a becomes an
 //                    interior v5), then (B) splits p along its edge to a (a: 6 again), and
 //                    the half of p next to c is the boundary v3. The vertex count is kept.
+//                    By connectivity this is a renaming: the result is the same triangulation
+//                    with the new vertex in the deleted one's place (or p in it and the new
+//                    vertex in p's); only positions change, the v3 slides along the boundary
+//                    polyline (test MoveAlongBoundaryIsARenamingOfTheConnectivity). A single
+//                    boundary irregular vertex cannot move through the lattice on its own, as
+//                    a single v5 cannot inside (sec. 5); a boundary pair can (below).
 //   GeneratePair(b, side)  a regular boundary vertex b (valence 4, fan nb[0..3]) emits an
 //                    interior 5-7 pair by one flip of its interior edge (b, y), y = nb[1] for
 //                    side 0, nb[2] for side 1 (opposites: the boundary neighbour o_b and the
@@ -77,7 +83,9 @@
 //                    an interior vertex into a boundary vertex of valence 3).
 //
 // Dry runs. Predict*() runs the operation under the journal and rolls it back (the result
-// is then exact by construction, and costs the same O(1) local work); the graph-level Can*
+// is then exact by construction, and costs the same O(1) local work, O(steps) for a pair
+// move; a pure-topology plan like type_change.h's would also need a boundary-aware scratch
+// with collapses and ear splits, not written yet); the graph-level Can*
 // of graph_ops.h are the topological dry runs each step goes through.
 // All operations are all-or-nothing (journal.h). Outcomes name their vertices.
 #pragma once
