@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <set>
 
 #include <vcg_ext/irregular/boundary_ops.h>
 #include <vcg_ext/irregular/mesh_checks.h>
@@ -645,4 +646,38 @@ TEST(BoundaryPairs, PredictionsAgreeOnRandomRequests) {
   }
   EXPECT_GT(applied, 10);
   std::printf("random boundary pair requests: applied %d (cancelled %d), refused %d\n", applied, cancelled, refused);
+}
+
+// What MoveAlongBoundary is, by connectivity: its collapse (A) and split (B) give back the
+// same triangulation with the v3 renamed (the new vertex takes the deleted one's place, or
+// the neighbour it moved towards takes it and the new vertex the neighbour's). Only the
+// positions change: the v3 slides along the boundary polyline. A single boundary irregular
+// vertex cannot move through the lattice alone (as a single v5 cannot inside, sec. 5); a
+// boundary pair can (MoveBoundaryPair).
+TEST(BoundaryOps, MoveAlongBoundaryIsARenamingOfTheConnectivity) {
+  TMesh m;
+  const int c = FlattenedCorner(m);
+  MeshEditor<TMesh> ed(m);
+  BoundaryOperations<TMesh> bo(ed);
+  VertexStar<TMesh> st = ed.Star(c);
+  const int p = ed.Index(st.neighbors.front());
+  auto faces = [&](std::map<int, int> rename) {
+    std::set<std::vector<int>> fs;
+    for (auto& f : m.face) {
+      if (f.IsD()) continue;
+      std::vector<int> v;
+      for (int z = 0; z < 3; ++z) {
+        const int i = int(vcg::tri::Index(m, f.V(z)));
+        v.push_back(rename.count(i) ? rename[i] : i);
+      }
+      std::rotate(v.begin(), std::min_element(v.begin(), v.end()), v.end());
+      fs.insert(v);
+    }
+    return fs;
+  };
+  const auto f0 = faces({});
+  BoundaryOutcome o = bo.MoveAlongBoundary(c, 0);
+  ASSERT_TRUE(o) << o.result.reason;
+  const int x = o.created;
+  EXPECT_TRUE(faces({{x, c}}) == f0 || faces({{p, c}, {x, p}}) == f0);
 }
