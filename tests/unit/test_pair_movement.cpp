@@ -287,6 +287,7 @@ const int kLatticeSteps[6][2] = {{1, 0}, {0, 1}, {-1, 1}, {-1, 0}, {0, -1}, {1, 
 /// step -s, and what it made instead.
 struct MirrorRun {
   int accepted = 0, mirrored = 0, offLattice = 0;
+  bool firstOffLattice = false;  ///< the first step already left the partner off the lattice
   std::vector<std::string> wrong;
 };
 MirrorRun RunMirrored(TMesh& m, MeshEditor<TMesh>& ed, CompositeOperations<TMesh>& co, int lead, int partner,
@@ -324,6 +325,7 @@ MirrorRun RunMirrored(TMesh& m, MeshEditor<TMesh>& ed, CompositeOperations<TMesh
       int nq, nr;
       const bool atMirrorEdge = LatticeOf(other, nq, nr, tol) && std::abs((other - mp).Norm() - 1.f) < 1e-4f;
       run.offLattice += atMirrorEdge;
+      run.firstOffLattice = run.firstOffLattice || s == 0;
       run.wrong.push_back(testing::PrintToString(std::vector<int>{sq, sr}) + " -> partner " + std::to_string(o.partner) +
                           " off the lattice at " + std::to_string(pp[0]) + "," + std::to_string(pp[1]) +
                           (atMirrorEdge ? ", the midpoint of the mirror point and its neighbour "
@@ -362,7 +364,7 @@ TEST(PairMovement, SameValencePairsMoveByMirroredLatticeSteps) {
     MeshEditor<TMesh> ed(m, Combinatorial());
     CompositeOperations<TMesh> co(ed, nullptr, NoRelax());
     const auto snap = test::Snapshot(m);
-    int accepted = 0, mirrored = 0, offLattice = 0;
+    int accepted = 0, mirrored = 0, offLattice = 0, crossChecked = 0, crossSame = 0;
     std::vector<std::string> notes;
     for (int leadIsA : {1, 0})
       for (int dir = 0; dir < 6; ++dir) {
@@ -374,11 +376,31 @@ TEST(PairMovement, SameValencePairsMoveByMirroredLatticeSteps) {
         mirrored += r.mirrored;
         offLattice += r.offLattice;
         for (auto& w : r.wrong) notes.push_back("lead " + std::to_string(lead) + ": " + w);
+        if (r.firstOffLattice) {
+          // the same move led by the other vertex (partner by -s) must give the same mesh: its
+          // lead lands exactly on partner - s, so the re-meshed survivor here stands for it.
+          // Compared by the canonical neighbourhood of a far, untouched vertex (radius 11).
+          const int root = test::At(m, -7, 0), first = test::At(m, -7, 1);
+          ASSERT_GE(root, 0);
+          ASSERT_GE(first, 0);
+          RunMirrored(m, ed, co, lead, partner, keep, dir, 1, 1e-4);
+          const auto formA = CanonicalNeighbourhood(m, root, first, 11);
+          ed.RollbackTo(cp);
+          MirrorRun b = RunMirrored(m, ed, co, partner, lead, keep, (dir + 3) % 6, 1, 1e-4);
+          const auto formB = CanonicalNeighbourhood(m, root, first, 11);
+          ed.RollbackTo(cp);
+          EXPECT_EQ(b.accepted, 1) << "the move led by the other vertex is refused";
+          EXPECT_TRUE(formA == formB) << "lead " << lead << ", direction " << dir
+                                      << ": led by the other vertex the mirrored move gives another mesh";
+          ++crossChecked;
+          crossSame += formA == formB;
+        }
       }
     EXPECT_EQ(test::Snapshot(m), snap);
     std::printf("%d-%d pair: %d steps accepted, %d with the partner exactly on the mirror lattice point, %d with it "
-                "at the midpoint of the mirror point and a neighbour (re-meshed)\n",
-                keep, keep, accepted, mirrored, offLattice);
+                "at the midpoint of the mirror point and a neighbour (re-meshed; %d of %d such first steps give the same mesh "
+                "as the move led by the other vertex)\n",
+                keep, keep, accepted, mirrored, offLattice, crossSame, crossChecked);
     for (auto& w : notes) std::printf("  %s\n", w.c_str());
     EXPECT_GE(accepted, 6);
     EXPECT_EQ(mirrored + offLattice, accepted) << "sec. 7.1.2: a partner's step is not the mirror image of the lead's";
