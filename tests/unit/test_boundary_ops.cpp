@@ -8,6 +8,7 @@
 #include <random>
 #include <set>
 
+#include <vcg_ext/irregular/atomic_ops.h>
 #include <vcg_ext/irregular/boundary_ops.h>
 #include <vcg_ext/irregular/mesh_checks.h>
 
@@ -680,4 +681,55 @@ TEST(BoundaryOps, MoveAlongBoundaryIsARenamingOfTheConnectivity) {
   ASSERT_TRUE(o) << o.result.reason;
   const int x = o.created;
   EXPECT_TRUE(faces({{x, c}}) == f0 || faces({{p, c}, {x, p}}) == f0);
+}
+
+// An interior 5-7 pair next to the boundary moves parallel to it with the atomic pair move
+// (fig. 6, atomic_ops.h): the pair GeneratePair leaves in the first row (q + r = 7 of
+// HexPatch(8); 5 at (3, 4), 7 at (4, 3), its edge along the row) moves one lattice step along
+// the row by a vertex split of the 7: the 7 lands exactly on (5, 2), the 5 is the split vertex
+// (moved a share of the way, relaxation off: within half an edge of (4, 3)); the old
+// 5 is regular again, the boundary pair it came from and every other valence stay. (The step
+// the other way along the row, and the flips there, are refused by atomic_ops.h: "the
+// operation would touch boundary vertex ..."; FI_DEBUG_B13=1 prints every direction.)
+TEST(BoundaryPairs, InteriorPairNextToTheBoundaryMovesParallelToIt) {
+  TMesh m;
+  test::HexPatch(m, 8);
+  MeshEditor<TMesh> ed(m);
+  BoundaryOperations<TMesh> bo(ed);
+  AtomicOperations<TMesh> ops(ed);
+  BoundaryOutcome g = bo.GeneratePair(At(m, 4, 4), 0);
+  ASSERT_TRUE(g) << g.result.reason;
+  ed.Commit();
+  const auto lattice = LatticeIds(m, 8);
+  ASSERT_TRUE(AtLattice(m, g.v5, 3, 4));
+  ASSERT_TRUE(AtLattice(m, g.v7, 4, 3));
+  const auto irr0 = IrregularMap(m);
+  int along = 0;
+  for (int dir = 0; dir < 6; ++dir) {
+    auto cp = ed.Mark();
+    AtomicOutcome o = ops.MovePair57(g.v5, g.v7, dir);
+    if (getenv("FI_DEBUG_B13"))
+      std::printf("dir %d: %s\n", dir, o ? o.description.c_str() : o.result.reason.c_str());
+    if (o && AtLattice(m, o.pair7, 5, 2)) {
+      ++along;
+      EXPECT_EQ(ed.Valence(o.pair7), 7);
+      EXPECT_EQ(ed.Valence(o.pair5), 5);
+      EXPECT_TRUE(ed.Adjacent(o.pair5, o.pair7));
+      ASSERT_EQ(o.created.size(), 1u);  // the split's other half: regular
+      EXPECT_EQ(ed.Valence(o.created[0]), 6);
+      EXPECT_EQ(o.pair5, g.v7);  // the split vertex keeps the 5's half
+      EXPECT_LT((m.vert[size_t(o.pair5)].P() - test::LatticePoint(4, 3)).Norm(), 0.5f);
+      EXPECT_FALSE(ed.IsBoundary(o.pair5) || ed.IsBoundary(o.pair7));
+      EXPECT_EQ(ed.Valence(g.v5), 6);
+      std::map<int, int> expect = irr0;
+      expect.erase(g.v5);
+      expect.erase(g.v7);
+      expect[o.pair5] = 5;
+      expect[o.pair7] = 7;
+      EXPECT_EQ(IrregularMap(m), expect);
+      ExpectValid(m);
+    }
+    ed.RollbackTo(cp);
+  }
+  EXPECT_EQ(along, 1) << "no atomic move takes the pair one step along the row";
 }
