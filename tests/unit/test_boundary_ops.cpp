@@ -632,6 +632,10 @@ TEST(BoundaryPairs, PredictionsAgreeOnRandomRequests) {
     EXPECT_EQ(pred.v3, real.v3);
     EXPECT_EQ(pred.v5, real.v5);
     EXPECT_EQ(pred.cancelled, real.cancelled);
+    EXPECT_EQ(pred.survivor, real.survivor);
+    EXPECT_EQ(pred.created, real.created);
+    EXPECT_EQ(pred.deleted, real.deleted);
+    EXPECT_EQ(pred.steps, real.steps);
     if (real) {
       ++applied;
       cancelled += real.cancelled;
