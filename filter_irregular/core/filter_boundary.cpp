@@ -1,6 +1,7 @@
 // filter_irregular: "Irregular Vertices: Boundary Operation": the boundary operations of
 // vcg_ext/irregular/boundary_ops.h on the selected vertices (absorb an interior v5/v7 or a 5-7
-// pair into the boundary, move a boundary v3 along it, generate a 5-7 pair from it).
+// pair into the boundary, move a boundary v3 along it, generate a 5-7 pair from it, move a
+// boundary 5-7 pair along it, generate two boundary pairs).
 #include <algorithm>
 #include <memory>
 
@@ -54,6 +55,30 @@ FilterOutcome ApplyBoundary(FilterContext& ctx, const ParamValues& par) {
                                             sel.size()));
       out = ops.GeneratePair(sel[0], side);
       break;
+    case 3:
+    case 4: {
+      irr::BoundaryPairOutcome po;
+      if (op == 3) {
+        if (sel.size() != 2)
+          return FilterOutcome::Refuse(Format("Moving a boundary 5-7 pair needs its two boundary vertices (valences 3 "
+                                              "and 5, joined by a boundary edge) selected; %zu are selected.",
+                                              sel.size()));
+        po = ops.MoveBoundaryPair(sel[0], sel[1],
+                                  par.Enum("pairDirection") == 0 ? irr::BoundaryPairDirection::TowardThree
+                                                                 : irr::BoundaryPairDirection::TowardFive,
+                                  par.Int("steps"));
+      } else {
+        if (sel.size() != 1)
+          return FilterOutcome::Refuse(Format("Generating two boundary pairs needs exactly one selected boundary "
+                                              "vertex of valence 4; %zu are selected.",
+                                              sel.size()));
+        po = ops.GenerateBoundaryPairs(sel[0]);
+      }
+      out.result = po.result;
+      out.description = po.description;
+      out.changes = po.changes;
+      break;
+    }
     default: return FilterOutcome::Refuse("Unknown operation.");
   }
   if (!out) return FilterOutcome::Refuse(out.result.reason);

@@ -412,16 +412,28 @@ std::vector<FilterSpec> MakeCatalog() {
       "a 5-7 pair next to the boundary. Move along the boundary: select a boundary vertex of valence 3 on a smooth "
       "stretch; it moves one vertex towards the chosen side. Generate a 5-7 pair from the boundary: select a regular "
       "boundary vertex (valence 4); one flip makes an interior 5-7 pair next to it and leaves a boundary 5-7 pair "
-      "(valences 3 and 5). All or nothing: a refused operation leaves the mesh unchanged and says why. The "
+      "(valences 3 and 5). Move a boundary 5-7 pair along the boundary: select the two boundary vertices of a "
+      "boundary pair (joined by a boundary edge, valences 3 and 5 on a smooth stretch); it moves 'steps' vertices "
+      "towards its valence-3 or its valence-5 vertex (a step towards the 3 collapses the 3's interior neighbour into "
+      "it, a step towards the 5 splits an ear off the 5), and where it meets a boundary irregular vertex or a "
+      "boundary pair of opposite sign it cancels against it and stops. Generate two boundary 5-7 pairs: select a "
+      "regular boundary vertex (valence 4); it goes inside and leaves a one-row bump, two boundary pairs of opposite "
+      "sign, nothing irregular inside. All or nothing: a refused operation leaves the mesh unchanged and says why. The "
       "resulting irregular vertices are selected. Relax after editing: the 2-ring of the edit is relaxed; boundary "
       "vertices slide along the boundary as it was (corners, whose corner angle differs from 180 degrees by 30 or "
       "more, stay fixed).";
   f.params = {
-      Enum("operation", 0, {"Absorb into the boundary", "Move along the boundary", "Generate a 5-7 pair from the boundary"},
-           "Operation", "What to do with the selected vertex (or 5-7 pair)."),
+      Enum("operation", 0,
+           {"Absorb into the boundary", "Move along the boundary", "Generate a 5-7 pair from the boundary",
+            "Move a boundary 5-7 pair along the boundary", "Generate two boundary 5-7 pairs"},
+           "Operation", "What to do with the selected vertex (or pair)."),
       Enum("side", 0, {"First boundary neighbour", "Second boundary neighbour"}, "Side",
-           "Move along / Generate: towards which boundary neighbour of the selected vertex. The first is the one "
-           "whose boundary edge comes first going counter-clockwise around the vertex (seen from outside)."),
+           "Move along / Generate a 5-7 pair: towards which boundary neighbour of the selected vertex. The first is "
+           "the one whose boundary edge comes first going counter-clockwise around the vertex (seen from outside)."),
+      Enum("pairDirection", 0, {"Towards its valence-3 vertex", "Towards its valence-5 vertex"}, "Boundary pair direction",
+           "Move a boundary 5-7 pair: the way along the boundary, named by the pair's own vertices."),
+      Int("steps", 1, 1, 100000, "Steps",
+          "Move a boundary 5-7 pair: how many boundary vertices it moves (fewer if it cancels on the way)."),
       RelaxAfterEditing(),
       Colorize(),
   };

@@ -16,7 +16,7 @@ from mlpy import EXAMPLES, Enum, Filter, read_off, select_vertices, selected_mas
 EXAMPLE_MESH = {"analyze.mlx": "bunny00.off", "atomic.mlx": "bunny00.off", "relax.mlx": "bunny00.off",
                 "reduce.mlx": "bunny00.off", "aggregate.mlx": "bunny00.off", "move_pair.mlx": "knot1.off",
                 "cancel_triple.mlx": "knot1.off", "cancel_quadruple.mlx": "knot1.off", "generate.mlx": "knot1.off",
-                "automatic_reduction.mlx": "bunny00.off"}
+                "automatic_reduction.mlx": "bunny00.off", "boundary.mlx": "mesh_with_border.off"}
 
 
 def test_every_example_is_in_this_suite():
@@ -154,6 +154,28 @@ def test_generate(meshlab, corpus):
     assert h1[5] == h0[5] + 2 and h1[7] == h0[7] + 2
     assert sorted(fo.valences(m)[selected_mask(m)].tolist()) == [5, 5, 7, 7]
     assert_counts(out, m, "_after")
+    assert_painted(m)
+
+
+def test_boundary(meshlab, corpus):
+    """mesh_with_border's boundary vertex 4 (on a smooth regular stretch): two boundary 5-7
+    pairs generated (the new vertices 548, 549), the pair (549, 177) moved two steps towards its
+    5 (ear splits: 550, 551), then back towards its 3 until it meets the other pair and both
+    cancel: the input's counts and valences again."""
+    src, r, m = run_example(meshlab, corpus, "boundary.mlx")
+    gen, move, back = r.returned
+    assert_counts(gen, src, "_before")
+    assert gen["boundary_irregular_after"] == gen["boundary_irregular_before"] + 4
+    assert gen["interior_irregular_after"] == gen["interior_irregular_before"]
+    assert gen["selected"] == 4 and gen["changed_vertices"] == 5
+    assert move["irregular_after"] == move["irregular_before"] and move["selected"] == 2
+    assert move["changed_vertices"] == 6  # 549 -> 4, 177 and 54 inside, 550 -> 4, 551 -> 3, 376 -> 5
+    assert_counts(back, m, "_after")
+    assert back["irregular_after"] == gen["irregular_before"]
+    assert back["boundary_irregular_after"] == gen["boundary_irregular_before"]
+    assert len(m.vertices) == len(src.vertices) and len(m.faces) == len(src.faces)
+    assert np.array_equal(hist(m), hist(src))
+    assert back["selected"] == 0 and not selected_mask(m).any()
     assert_painted(m)
 
 

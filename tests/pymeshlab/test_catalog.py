@@ -37,6 +37,7 @@ EXPECTED = {
                 ("protect", "str", "'Nothing'"), ("relaxation", "str", "'Local'"), ("timelimit", "float", "60"),
                 ("colorize", "bool", "True")],
     BOUNDARY: [("operation", "str", "'Absorb into the boundary'"), ("side", "str", "'First boundary neighbour'"),
+               ("pairdirection", "str", "'Towards its valence-3 vertex'"), ("steps", "int", "1"),
                ("relax", "bool", "True"), ("colorize", "bool", "True")],
 }
 
@@ -99,8 +100,11 @@ EXERCISED = {
     (AUTOMATIC, "timelimit"): ["test_automatic_reduction::test_time_limit_on_a_larger_mesh"],
     (AUTOMATIC, "colorize"): ["test_automatic_reduction::test_users_colours_and_quality_survive_where_no_edit_reaches"],
     (BOUNDARY, "operation"): ["test_boundary::test_boundary_v3_moves_along_the_boundary",
-                              "test_boundary::test_generated_pair_is_absorbed_again"],
+                              "test_boundary::test_generated_pair_is_absorbed_again",
+                              "test_boundary::test_boundary_pairs_generated_moved_and_cancelled"],
     (BOUNDARY, "side"): ["test_boundary::test_generated_pair_is_absorbed_again"],
+    (BOUNDARY, "pairdirection"): ["test_boundary::test_boundary_pairs_generated_moved_and_cancelled"],
+    (BOUNDARY, "steps"): ["test_boundary::test_boundary_pairs_generated_moved_and_cancelled"],
     (BOUNDARY, "relax"): ["test_boundary::test_generated_pair_is_absorbed_again"],
     (BOUNDARY, "colorize"): ["test_boundary::test_generated_pair_is_absorbed_again"],
 }

@@ -6,7 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <set>
 
+#include <vcg_ext/irregular/atomic_ops.h>
 #include <vcg_ext/irregular/boundary_ops.h>
 #include <vcg_ext/irregular/mesh_checks.h>
 
@@ -311,4 +313,427 @@ TEST(BoundaryOps, PredictionsAgreeOnRandomRequests) {
   }
   EXPECT_GT(applied, 5);
   std::printf("random boundary operations: applied %d, refused %d\n", applied, refused);
+}
+
+// ---------------------------------------------------------------- boundary 5-7 pairs
+// (boundary_ops.h: MoveBoundaryPair, GenerateBoundaryPairs, EarSplit; docs/boundary_pair_move.svg)
+namespace {
+
+/// Lattice (axial) coordinates of every vertex of a fresh HexPatch, by id.
+std::map<int, std::pair<int, int>> LatticeIds(TMesh& m, int radius) {
+  std::map<int, std::pair<int, int>> r;
+  for (int q = -radius; q <= radius; ++q)
+    for (int s = -radius; s <= radius; ++s) {
+      const int v = At(m, q, s);
+      if (v >= 0) r[v] = {q, s};
+    }
+  return r;
+}
+
+bool AtLattice(TMesh& m, int v, int q, int r) {
+  return v >= 0 && (m.vert[size_t(v)].P() - test::LatticePoint(q, r)).Norm() < 1e-4f;
+}
+
+/// The boundary vertex after `v` going away from `prev`.
+int NextAlong(MeshEditor<TMesh>& ed, int v, int prev) {
+  VertexStar<TMesh> st = ed.Star(v);
+  const int f = ed.Index(st.neighbors.front()), l = ed.Index(st.neighbors.back());
+  return f == prev ? l : f;
+}
+
+/// All live vertices irregular (by the boundary valence rule), with their valences.
+std::map<int, int> IrregularMap(TMesh& m) {
+  std::map<int, int> r;
+  ValenceField<TMesh> vf = ComputeValences(m);
+  for (size_t i = 0; i < m.vert.size(); ++i)
+    if (!m.vert[i].IsD() && vf.IsIrregular(i)) r[int(i)] = vf.valence[i];
+  return r;
+}
+
+}  // namespace
+
+// A regular boundary vertex of a straight side becomes two boundary pairs of opposite sign
+// (a one-row bump): n0 5, e 3, e' 3, nn 5; the vertex itself goes inside with valence 6.
+TEST(BoundaryPairs, GenerateBoundaryPairsMakesABump) {
+  TMesh m;
+  test::HexPatch(m, 8);
+  MeshEditor<TMesh> ed(m);
+  BoundaryOperations<TMesh> bo(ed);
+  const int b = At(m, 4, 4);  // on the side q + r = 8
+  VertexStar<TMesh> st = ed.Star(b);
+  const int n0 = ed.Index(st.neighbors.front()), nn = ed.Index(st.neighbors.back());
+  const auto before = test::Valences(m);
+  const auto snap = test::Snapshot(m);
+  BoundaryPairOutcome pred = bo.PredictGenerateBoundaryPairs(b);
+  EXPECT_EQ(test::Snapshot(m), snap);
+  BoundaryPairOutcome g = bo.GenerateBoundaryPairs(b);
+  ASSERT_TRUE(g) << g.result.reason;
+  EXPECT_EQ(pred.changes, g.changes);
+  EXPECT_EQ(pred.v3, g.v3);
+  EXPECT_EQ(pred.other3, g.other3);
+  ASSERT_EQ(g.created.size(), 2u);
+  EXPECT_EQ(g.v5, nn);
+  EXPECT_EQ(g.other5, n0);
+  // the changes, vertex by vertex: b inside (6), the new vertices 3 and 3, n0 and nn 5
+  EXPECT_EQ(g.changes, (std::map<int, int>{{b, 6}, {g.v3, 3}, {g.other3, 3}, {n0, 5}, {nn, 5}}));
+  EXPECT_FALSE(ed.IsBoundary(b));
+  EXPECT_TRUE(ed.IsBoundaryEdge(n0, g.other3));
+  EXPECT_TRUE(ed.IsBoundaryEdge(g.other3, g.v3));
+  EXPECT_TRUE(ed.IsBoundaryEdge(g.v3, nn));
+  // n0 and nn keep their lattice points
+  EXPECT_TRUE(AtLattice(m, n0, 3, 5) || AtLattice(m, n0, 5, 3));
+  EXPECT_TRUE(AtLattice(m, nn, 3, 5) || AtLattice(m, nn, 5, 3));
+  ExpectOthersUnchanged(m, before, g.changes);
+  EXPECT_EQ(IrregularMap(m), (std::map<int, int>{{g.v3, 3}, {g.other3, 3}, {n0, 5}, {nn, 5}}));
+  EXPECT_EQ(Summarize(m).vertices, 3 * 8 * 9 + 1 + 2);
+  ExpectValid(m);
+}
+
+// The pair (e' 3, nn 5) walks k steps towards its 5 along the straight side and back: each
+// step is one ear split (E) forwards, one collapse (C) backwards. The boundary vertices stay
+// on lattice points: after k steps the 3 sits at the lattice point of the k-th side vertex
+// beyond nn's start (a new vertex), the 5 is the (k+1)-th side vertex itself; the side
+// vertices passed over are inside with valence 6. Back again, the pair is where it started.
+TEST(BoundaryPairs, PairMovesAlongTheBoundaryTowardsItsFiveAndBack) {
+  for (int k : {1, 2, 3}) {
+    SCOPED_TRACE(testing::Message() << "k = " << k);
+    TMesh m;
+    test::HexPatch(m, 10);
+    const auto lattice = LatticeIds(m, 10);
+    MeshEditor<TMesh> ed(m);
+    BoundaryOperations<TMesh> bo(ed);
+    const int b = At(m, 5, 5);
+    BoundaryPairOutcome g = bo.GenerateBoundaryPairs(b);
+    ASSERT_TRUE(g) << g.result.reason;
+    ed.Commit();
+    // the side beyond nn: s[0] = nn, s[1], ... (original vertices, lattice points)
+    std::vector<int> side{g.v5};
+    for (int prev = g.v3; side.size() < size_t(k) + 2;) {
+      const int nx = NextAlong(ed, side.back(), prev);
+      prev = side.back();
+      side.push_back(nx);
+    }
+    const auto irr0 = IrregularMap(m);
+    const auto before = test::Valences(m);
+    const auto snap = test::Snapshot(m);
+    BoundaryPairOutcome pred = bo.PredictMoveBoundaryPair(g.v3, g.v5, BoundaryPairDirection::TowardFive, k);
+    EXPECT_EQ(test::Snapshot(m), snap);
+    BoundaryPairOutcome o = bo.MoveBoundaryPair(g.v3, g.v5, BoundaryPairDirection::TowardFive, k);
+    ASSERT_TRUE(o) << o.result.reason;
+    EXPECT_EQ(pred.changes, o.changes);
+    EXPECT_EQ(pred.v3, o.v3);
+    EXPECT_EQ(pred.v5, o.v5);
+    EXPECT_EQ(o.steps, k);
+    EXPECT_FALSE(o.cancelled);
+    ASSERT_EQ(o.created.size(), size_t(k));
+    // where the pair is: the 3 at the lattice point of side[k - 1], the 5 is side[k]
+    const auto pk = lattice.at(side[size_t(k) - 1]);
+    EXPECT_TRUE(AtLattice(m, o.v3, pk.first, pk.second));
+    EXPECT_EQ(o.v3, o.created.back());
+    EXPECT_EQ(o.v5, side[size_t(k)]);
+    // every touched vertex: the old 3 back to 4, side[0..k-1] inside with 6, the new
+    // vertices on their lattice points with 4 (the last: 3), side[k] 5
+    std::map<int, int> expect{{g.v3, 4}};
+    for (int i = 0; i < k; ++i) {
+      expect[side[size_t(i)]] = 6;
+      expect[o.created[size_t(i)]] = i + 1 == k ? 3 : 4;
+      const auto pi = lattice.at(side[size_t(i)]);
+      EXPECT_TRUE(AtLattice(m, o.created[size_t(i)], pi.first, pi.second)) << "created vertex " << i;
+      EXPECT_FALSE(ed.IsBoundary(side[size_t(i)]));
+    }
+    expect[side[size_t(k)]] = 5;
+    EXPECT_EQ(o.changes, expect);
+    ExpectOthersUnchanged(m, before, o.changes);
+    std::map<int, int> irr = irr0;
+    irr.erase(g.v3);
+    irr.erase(g.v5);
+    irr[o.v3] = 3;
+    irr[o.v5] = 5;
+    EXPECT_EQ(IrregularMap(m), irr);
+    ExpectValid(m);
+    ed.Commit();
+
+    // back: k collapses (C); the pair ends on (created[0]'s predecessor = g.v3, created[0])
+    BoundaryPairOutcome back = bo.MoveBoundaryPair(o.v3, o.v5, BoundaryPairDirection::TowardThree, k);
+    ASSERT_TRUE(back) << back.result.reason;
+    EXPECT_EQ(back.v3, g.v3);
+    EXPECT_EQ(back.v5, o.created[0]);
+    const auto p0 = lattice.at(side[0]);
+    EXPECT_TRUE(AtLattice(m, back.v5, p0.first, p0.second));
+    std::vector<int> deleted(side.begin(), side.begin() + k);
+    std::reverse(deleted.begin(), deleted.end());
+    EXPECT_EQ(back.deleted, deleted);  // the vertices that went inside are collapsed again
+    irr = irr0;
+    irr.erase(g.v5);
+    irr[back.v5] = 5;
+    EXPECT_EQ(IrregularMap(m), irr);
+    EXPECT_EQ(Summarize(m).vertices, 3 * 10 * 11 + 1 + 2);
+    ExpectValid(m);
+  }
+}
+
+// Bump: the pair (e' 3, nn 5) steps once towards its 5 and then twice towards its 3: the
+// second step meets the opposite pair (n0 5, e 3) and both cancel: nothing irregular is left.
+TEST(BoundaryPairs, OppositePairsCancelInABump) {
+  TMesh m;
+  test::HexPatch(m, 8);
+  MeshEditor<TMesh> ed(m);
+  BoundaryOperations<TMesh> bo(ed);
+  BoundaryPairOutcome g = bo.GenerateBoundaryPairs(At(m, 4, 4));
+  ASSERT_TRUE(g) << g.result.reason;
+  BoundaryPairOutcome f = bo.MoveBoundaryPair(g.v3, g.v5, BoundaryPairDirection::TowardFive, 1);
+  ASSERT_TRUE(f) << f.result.reason;
+  ed.Commit();
+  const auto before = test::Valences(m);
+  BoundaryPairOutcome pred = bo.PredictMoveBoundaryPair(f.v3, f.v5, BoundaryPairDirection::TowardThree, 5);
+  BoundaryPairOutcome o = bo.MoveBoundaryPair(f.v3, f.v5, BoundaryPairDirection::TowardThree, 5);
+  ASSERT_TRUE(o) << o.result.reason;
+  EXPECT_EQ(pred.changes, o.changes);
+  EXPECT_TRUE(o.cancelled);
+  EXPECT_EQ(o.steps, 2);  // one step, then the cancellation
+  EXPECT_EQ(o.survivor, -1);
+  EXPECT_EQ(o.v3, -1);
+  EXPECT_TRUE(o.boundaryIrregular.empty());
+  ExpectOthersUnchanged(m, before, o.changes);
+  EXPECT_TRUE(IrregularMap(m).empty());
+  EXPECT_EQ(Summarize(m).vertices, 3 * 8 * 9 + 1);  // the bump's vertices are gone again
+  ExpectValid(m);
+}
+
+// Notch: two bumps three side vertices apart; the inner pairs face each other (3 5 .. 5 3).
+// The left one moves towards its 5 until it meets the right one: two ear splits and a
+// boundary-edge collapse cancel both; the outer pairs stay where they were.
+TEST(BoundaryPairs, OppositePairsCancelInANotch) {
+  TMesh m;
+  test::HexPatch(m, 10);
+  MeshEditor<TMesh> ed(m);
+  BoundaryOperations<TMesh> bo(ed);
+  // side q + r = 10; bumps at (7, 3) and (3, 7)
+  BoundaryPairOutcome g1 = bo.GenerateBoundaryPairs(At(m, 7, 3));
+  ASSERT_TRUE(g1) << g1.result.reason;
+  BoundaryPairOutcome g2 = bo.GenerateBoundaryPairs(At(m, 3, 7));
+  ASSERT_TRUE(g2) << g2.result.reason;
+  ed.Commit();
+  // the inner pairs: the one of g1 and the one of g2 whose 5s are closest
+  auto dist = [&](int a, int b) { return (m.vert[size_t(a)].P() - m.vert[size_t(b)].P()).Norm(); };
+  int l3 = g1.v3, l5 = g1.v5, o3 = g1.other3, o5 = g1.other5;
+  if (dist(g1.other5, g2.v5) + dist(g1.other5, g2.other5) < dist(g1.v5, g2.v5) + dist(g1.v5, g2.other5))
+    std::swap(l3, o3), std::swap(l5, o5);
+  int r3 = g2.v3, r5 = g2.v5, s3 = g2.other3, s5 = g2.other5;
+  if (dist(g2.other5, l5) < dist(g2.v5, l5)) std::swap(r3, s3), std::swap(r5, s5);
+  const auto before = test::Valences(m);
+  BoundaryPairOutcome pred = bo.PredictMoveBoundaryPair(l3, l5, BoundaryPairDirection::TowardFive, 10);
+  BoundaryPairOutcome o = bo.MoveBoundaryPair(l3, l5, BoundaryPairDirection::TowardFive, 10);
+  ASSERT_TRUE(o) << o.result.reason;
+  EXPECT_EQ(pred.changes, o.changes);
+  EXPECT_TRUE(o.cancelled);
+  EXPECT_EQ(o.survivor, -1);
+  EXPECT_EQ(o.steps, 2);  // (7,3)-bump's 5 at (6,4), the other's 5 at (4,6): one step, then the notch
+  ExpectOthersUnchanged(m, before, o.changes);
+  // the outer pairs are all that is left
+  EXPECT_EQ(IrregularMap(m), (std::map<int, int>{{o3, 3}, {o5, 5}, {s3, 3}, {s5, 5}}));
+  ExpectValid(m);
+}
+
+// A pair meeting a single boundary irregular vertex of opposite sign cancels against it: the
+// flattened corner's 3 absorbs the pair's 5 step, one boundary 3 is left (one step closer).
+TEST(BoundaryPairs, PairCancelsAgainstASingleBoundaryThree) {
+  TMesh m;
+  const int c = FlattenedCorner(m);  // HexPatch(4), (4, 0) a boundary 3 on a smooth stretch
+  MeshEditor<TMesh> ed(m);
+  BoundaryOperations<TMesh> bo(ed);
+  // a bump two side vertices from the corner, on the side towards (4, -4)... or (0, 4)
+  const int b = At(m, 4, -2);
+  ASSERT_GE(b, 0);
+  BoundaryPairOutcome g = bo.GenerateBoundaryPairs(b);
+  ASSERT_TRUE(g) << g.result.reason;
+  ed.Commit();
+  // the pair whose 5 lies towards the corner
+  auto dist = [&](int a, int e) { return (m.vert[size_t(a)].P() - m.vert[size_t(e)].P()).Norm(); };
+  const bool firstNearer = dist(g.other5, c) < dist(g.v5, c);
+  const int p3 = firstNearer ? g.other3 : g.v3, p5 = firstNearer ? g.other5 : g.v5;
+  const int k3 = firstNearer ? g.v3 : g.other3, k5 = firstNearer ? g.v5 : g.other5;
+  ASSERT_EQ(NextAlong(ed, p5, p3), c);
+  const auto before = test::Valences(m);
+  BoundaryPairOutcome o = bo.MoveBoundaryPair(p3, p5, BoundaryPairDirection::TowardFive, 3);
+  ASSERT_TRUE(o) << o.result.reason;
+  EXPECT_TRUE(o.cancelled);
+  EXPECT_EQ(o.steps, 1);
+  ASSERT_EQ(o.created.size(), 1u);
+  EXPECT_EQ(o.survivor, o.created[0]);
+  EXPECT_EQ(o.changes, (std::map<int, int>{{p3, 4}, {p5, 6}, {o.survivor, 3}, {c, 4}}));
+  ExpectOthersUnchanged(m, before, o.changes);
+  EXPECT_EQ(IrregularMap(m), (std::map<int, int>{{k3, 3}, {k5, 5}, {o.survivor, 3}}));
+  ExpectValid(m);
+}
+
+TEST(BoundaryPairs, RefusalsSayWhyAndChangeNothing) {
+  TMesh m;
+  test::HexPatch(m, 6);
+  MeshEditor<TMesh> ed(m);
+  BoundaryOperations<TMesh> bo(ed);
+  const auto snap = test::Snapshot(m);
+  BoundaryPairOutcome r1 = bo.MoveBoundaryPair(At(m, 3, 3), At(m, 2, 4), BoundaryPairDirection::TowardThree, 1);
+  EXPECT_FALSE(r1);
+  EXPECT_NE(r1.result.reason.find("valence 3 and 5"), std::string::npos) << r1.result.reason;
+  BoundaryPairOutcome r2 = bo.GenerateBoundaryPairs(At(m, 6, 0));  // a corner
+  EXPECT_FALSE(r2);
+  EXPECT_NE(r2.result.reason.find("corner"), std::string::npos) << r2.result.reason;
+  BoundaryPairOutcome r3 = bo.GenerateBoundaryPairs(At(m, 1, 1));  // interior
+  EXPECT_FALSE(r3);
+  EXPECT_EQ(test::Snapshot(m), snap);
+  // a pair walking into a corner: (4, 2)'s bump, the pair on the side of (6, 0)
+  BoundaryPairOutcome g = bo.GenerateBoundaryPairs(At(m, 4, 2));
+  ASSERT_TRUE(g) << g.result.reason;
+  ed.Commit();
+  const int corner = At(m, 6, 0);
+  const bool firstNearer = (m.vert[size_t(g.other5)].P() - m.vert[size_t(corner)].P()).Norm() <
+                           (m.vert[size_t(g.v5)].P() - m.vert[size_t(corner)].P()).Norm();
+  const int p3 = firstNearer ? g.other3 : g.v3, p5 = firstNearer ? g.other5 : g.v5;
+  ASSERT_EQ(NextAlong(ed, p5, p3), corner);
+  const auto snap2 = test::Snapshot(m);
+  BoundaryPairOutcome o = bo.MoveBoundaryPair(p3, p5, BoundaryPairDirection::TowardFive, 1);
+  EXPECT_FALSE(o);
+  EXPECT_NE(o.result.reason.find("corner"), std::string::npos) << o.result.reason;
+  EXPECT_EQ(test::Snapshot(m), snap2);
+}
+
+// Random boundary pair requests on an annulus with bumps (fixed seed): the dry run says
+// exactly what the operation then does; refusals change nothing; successes keep invariants.
+TEST(BoundaryPairs, PredictionsAgreeOnRandomRequests) {
+  TMesh m;
+  test::HexPatchWithHole(m, 7, 2);
+  MeshEditor<TMesh> ed(m);
+  BoundaryOperations<TMesh> bo(ed);
+  std::mt19937 rng(5);
+  int applied = 0, refused = 0, cancelled = 0;
+  for (int it = 0; it < 400; ++it) {
+    const int v = int(rng() % m.vert.size());
+    if (!ed.IsLive(v) || !ed.IsBoundary(v)) continue;
+    const auto snap = test::Snapshot(m);
+    BoundaryPairOutcome pred, real;
+    if (rng() % 3 == 0) {
+      pred = bo.PredictGenerateBoundaryPairs(v);
+      ASSERT_EQ(test::Snapshot(m), snap);
+      real = bo.GenerateBoundaryPairs(v);
+    } else {
+      // a pair through v: v and a boundary neighbour
+      VertexStar<TMesh> st = ed.Star(v);
+      const int w = ed.Index(rng() % 2 ? st.neighbors.front() : st.neighbors.back());
+      const auto dir = rng() % 2 ? BoundaryPairDirection::TowardThree : BoundaryPairDirection::TowardFive;
+      const int steps = 1 + int(rng() % 4);
+      pred = bo.PredictMoveBoundaryPair(v, w, dir, steps);
+      ASSERT_EQ(test::Snapshot(m), snap);
+      real = bo.MoveBoundaryPair(v, w, dir, steps);
+    }
+    ASSERT_EQ(pred.result.ok, real.result.ok) << pred.result.reason << " / " << real.result.reason;
+    EXPECT_EQ(pred.result.reason, real.result.reason);
+    EXPECT_EQ(pred.changes, real.changes);
+    EXPECT_EQ(pred.v3, real.v3);
+    EXPECT_EQ(pred.v5, real.v5);
+    EXPECT_EQ(pred.cancelled, real.cancelled);
+    EXPECT_EQ(pred.survivor, real.survivor);
+    EXPECT_EQ(pred.created, real.created);
+    EXPECT_EQ(pred.deleted, real.deleted);
+    EXPECT_EQ(pred.steps, real.steps);
+    if (real) {
+      ++applied;
+      cancelled += real.cancelled;
+      Result inv = CheckInvariants(m);
+      ASSERT_TRUE(inv.ok) << inv.reason;
+      ASSERT_TRUE(Summarize(m).GaussBonnetHolds());
+    } else {
+      ++refused;
+      EXPECT_FALSE(real.result.reason.empty());
+      ASSERT_EQ(test::Snapshot(m), snap) << real.result.reason;
+    }
+    ed.Commit();
+  }
+  EXPECT_GT(applied, 10);
+  std::printf("random boundary pair requests: applied %d (cancelled %d), refused %d\n", applied, cancelled, refused);
+}
+
+// What MoveAlongBoundary is, by connectivity: its collapse (A) and split (B) give back the
+// same triangulation with the v3 renamed (the new vertex takes the deleted one's place, or
+// the neighbour it moved towards takes it and the new vertex the neighbour's). Only the
+// positions change: the v3 slides along the boundary polyline. A single boundary irregular
+// vertex cannot move through the lattice alone (as a single v5 cannot inside, sec. 5); a
+// boundary pair can (MoveBoundaryPair).
+TEST(BoundaryOps, MoveAlongBoundaryIsARenamingOfTheConnectivity) {
+  TMesh m;
+  const int c = FlattenedCorner(m);
+  MeshEditor<TMesh> ed(m);
+  BoundaryOperations<TMesh> bo(ed);
+  VertexStar<TMesh> st = ed.Star(c);
+  const int p = ed.Index(st.neighbors.front());
+  auto faces = [&](std::map<int, int> rename) {
+    std::set<std::vector<int>> fs;
+    for (auto& f : m.face) {
+      if (f.IsD()) continue;
+      std::vector<int> v;
+      for (int z = 0; z < 3; ++z) {
+        const int i = int(vcg::tri::Index(m, f.V(z)));
+        v.push_back(rename.count(i) ? rename[i] : i);
+      }
+      std::rotate(v.begin(), std::min_element(v.begin(), v.end()), v.end());
+      fs.insert(v);
+    }
+    return fs;
+  };
+  const auto f0 = faces({});
+  BoundaryOutcome o = bo.MoveAlongBoundary(c, 0);
+  ASSERT_TRUE(o) << o.result.reason;
+  const int x = o.created;
+  EXPECT_TRUE(faces({{x, c}}) == f0 || faces({{p, c}, {x, p}}) == f0);
+}
+
+// An interior 5-7 pair next to the boundary moves parallel to it with the atomic pair move
+// (fig. 6, atomic_ops.h): the pair GeneratePair leaves in the first row (q + r = 7 of
+// HexPatch(8); 5 at (3, 4), 7 at (4, 3), its edge along the row) moves one lattice step along
+// the row by a vertex split of the 7: the 7 lands exactly on (5, 2), the 5 is the split vertex
+// (moved a share of the way, relaxation off: within half an edge of (4, 3)); the old
+// 5 is regular again, the boundary pair it came from and every other valence stay. (The step
+// the other way along the row, and the flips there, are refused by atomic_ops.h: "the
+// operation would touch boundary vertex ..."; FI_DEBUG_B13=1 prints every direction.)
+TEST(BoundaryPairs, InteriorPairNextToTheBoundaryMovesParallelToIt) {
+  TMesh m;
+  test::HexPatch(m, 8);
+  MeshEditor<TMesh> ed(m);
+  BoundaryOperations<TMesh> bo(ed);
+  AtomicOperations<TMesh> ops(ed);
+  BoundaryOutcome g = bo.GeneratePair(At(m, 4, 4), 0);
+  ASSERT_TRUE(g) << g.result.reason;
+  ed.Commit();
+  const auto lattice = LatticeIds(m, 8);
+  ASSERT_TRUE(AtLattice(m, g.v5, 3, 4));
+  ASSERT_TRUE(AtLattice(m, g.v7, 4, 3));
+  const auto irr0 = IrregularMap(m);
+  int along = 0;
+  for (int dir = 0; dir < 6; ++dir) {
+    auto cp = ed.Mark();
+    AtomicOutcome o = ops.MovePair57(g.v5, g.v7, dir);
+    if (getenv("FI_DEBUG_B13"))
+      std::printf("dir %d: %s\n", dir, o ? o.description.c_str() : o.result.reason.c_str());
+    if (o && AtLattice(m, o.pair7, 5, 2)) {
+      ++along;
+      EXPECT_EQ(ed.Valence(o.pair7), 7);
+      EXPECT_EQ(ed.Valence(o.pair5), 5);
+      EXPECT_TRUE(ed.Adjacent(o.pair5, o.pair7));
+      ASSERT_EQ(o.created.size(), 1u);  // the split's other half: regular
+      EXPECT_EQ(ed.Valence(o.created[0]), 6);
+      EXPECT_EQ(o.pair5, g.v7);  // the split vertex keeps the 5's half
+      EXPECT_LT((m.vert[size_t(o.pair5)].P() - test::LatticePoint(4, 3)).Norm(), 0.5f);
+      EXPECT_FALSE(ed.IsBoundary(o.pair5) || ed.IsBoundary(o.pair7));
+      EXPECT_EQ(ed.Valence(g.v5), 6);
+      std::map<int, int> expect = irr0;
+      expect.erase(g.v5);
+      expect.erase(g.v7);
+      expect[o.pair5] = 5;
+      expect[o.pair7] = 7;
+      EXPECT_EQ(IrregularMap(m), expect);
+      ExpectValid(m);
+    }
+    ed.RollbackTo(cp);
+  }
+  EXPECT_EQ(along, 1) << "no atomic move takes the pair one step along the row";
 }
