@@ -268,6 +268,9 @@ class BoundaryOperations {
     if (!st.boundary || !st.manifold) return Result::Fail("vertex " + S(y) + " does not lie on the boundary");
     if (st.neighbors.front() == st.neighbors.back())
       return Result::Fail("the boundary of vertex " + S(y) + " is too short for an ear split");
+    // the new faces copy texture coordinates from the corners they border: one texture around y
+    Result seam = ed_.StarSeamless(y);
+    if (!seam) return Result::Fail("the ear split of boundary vertex " + S(y) + " is refused: " + seam.reason);
     return Result::Ok();
   }
 

@@ -104,6 +104,10 @@ class MeshEditor {
     return EdgeCorner(x, y, c) && c.f->FFp(c.z) == c.f;
   }
   bool Adjacent(int a, int b) { return Star(a).IndexOf(V(b)) >= 0; }
+  /// Attributes: Ok when no texture seam runs through the star of vertex i (per-wedge texture
+  /// coordinates agree across every edge at i), the condition this editor's splits check; for
+  /// operations built beside it (boundary_ops.h's ear split).
+  Result StarSeamless(int i) { return attr_.StarSeamless(Star(i)); }
 
   /// The vertices opposite to edge (x, y): o[0] on the left of x->y (in the face x, y, o0),
   /// o[1] on the right. False if the edge does not exist or lies on the boundary.
