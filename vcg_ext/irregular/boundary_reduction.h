@@ -187,6 +187,7 @@ class BoundaryReduction {
     BoundaryReductionReport r;
     r.boundaryLimit = limit_;
     std::vector<int> cands = BuildStatus();
+    vetoed_.clear();
     r.interiorBefore = interior_;
     r.boundaryBefore = boundary_;
     r.candidates = int(cands.size());
@@ -271,6 +272,7 @@ class BoundaryReduction {
     Attempt best;
     bool found = false;
     for (int kind : {kAbsorb, kPair}) {
+      if (Vetoed(v, kind)) continue;  // the guard refused it in the first phase: it would again
       auto cp = ed_.Mark();
       Attempt a;
       ++r.attempts;
@@ -299,6 +301,7 @@ class BoundaryReduction {
     }
     if (!guard_.accept || !guard_.accept(a.touched)) {
       ed_.RollbackTo(cp);
+      vetoed_[v] |= 1 << best.kind;
       ++r.undone;
       return false;
     }
@@ -321,6 +324,11 @@ class BoundaryReduction {
     if (a.dBoundary < 0) r.cancelled += -a.dBoundary;
     if (a.dBoundary > 0) r.boundaryAdded += a.dBoundary;
     return true;
+  }
+
+  bool Vetoed(int v, int kind) const {
+    auto it = vetoed_.find(v);
+    return it != vetoed_.end() && (it->second >> kind & 1);
   }
 
   static int Score(const Attempt& a) { return a.dInterior + a.dBoundary; }
@@ -542,6 +550,7 @@ class BoundaryReduction {
   int limit_ = 0;
   std::vector<signed char> status_;  ///< per vertex: kRegular, kInterior or kBoundary (irregular)
   int interior_ = 0, boundary_ = 0;  ///< current counts, kept up to date edit by edit
+  std::unordered_map<int, int> vetoed_;  ///< per candidate (this call): bit k = the guard refused edit kind k
 };
 
 }  // namespace irregular
