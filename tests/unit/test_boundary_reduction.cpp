@@ -504,7 +504,7 @@ TEST_P(BoundaryReductionCorpus, AngleAndHausdorffGuard) {
 // the holes. The limit is the input's boundary count (the driver builds the stage before its
 // first edit); the reduction itself may have raised the boundary count past it, and then the
 // stage may only lower it.
-TEST(BoundaryReductionAfterDriver, MeshWithBorder) {
+TEST(BoundaryReductionRuns, AfterTheInteriorReductionOnMeshWithBorder) {
   TMesh m;
   std::unique_ptr<SurfaceProjector> input;
   Remeshed(m, CorpusCase{"mesh_with_border.off", 3000}, &input);
@@ -539,6 +539,31 @@ TEST(BoundaryReductionAfterDriver, MeshWithBorder) {
               "stage %d / %d (%d edits kept; guard refused %d by angle, %d by distance)\n",
               LiveVertices(m), remeshed.interior, remeshed.boundary, reduced.interior, reduced.boundary, now.interior,
               now.boundary, kept, guard.angleRefusals, guard.distanceRefusals);
+}
+
+// Two runs on the same input give the same mesh (no clock, no hash order in the decisions).
+TEST(BoundaryReductionRuns, Deterministic) {
+  TMesh a, b;
+  std::unique_ptr<SurfaceProjector> input;
+  Remeshed(a, CorpusCase{"holes.off", 3000}, &input);
+  if (HasFatalFailure()) return;
+  vcg::tri::Append<TMesh, TMesh>::MeshCopy(b, a);
+  test::UpdateTopology(b);
+  std::vector<BoundaryReductionReport> reports;
+  for (TMesh* m : {&a, &b}) {
+    MeshEditor<TMesh> ed(*m);
+    AngleHausdorffGuard guard(*m, ed, *input);
+    BoundaryReduction<TMesh> br(ed, input.get(), guard.Make());
+    reports.push_back(br.Run());
+    ed.Commit();
+  }
+  EXPECT_GT(reports[0].Kept(), 0);
+  EXPECT_EQ(reports[0].Kept(), reports[1].Kept());
+  EXPECT_EQ(reports[0].undone, reports[1].undone);
+  EXPECT_EQ(test::CanonicalFaces(a), test::CanonicalFaces(b));
+  ASSERT_EQ(a.vert.size(), b.vert.size());
+  for (size_t i = 0; i < a.vert.size(); ++i)
+    if (!a.vert[i].IsD()) EXPECT_EQ(a.vert[i].P(), b.vert[i].P()) << "vertex " << i;
 }
 
 INSTANTIATE_TEST_SUITE_P(Holes, BoundaryReductionCorpus,
