@@ -26,9 +26,11 @@
 //              boundary edge); Absorb itself picks the boundary vertex that cancels (a boundary
 //              v5 for (B), a boundary v3 end for (A)) when there is one;
 //     pair     an adjacent interior 5-7 pair (v and a neighbour of the other type) is moved by
-//              pair steps (fig. 6; at most `maxTravel`) toward the nearest boundary irregular
-//              vertex (or, with none within reach, the nearest boundary vertex), and absorbed
-//              whole by AbsorbPair as soon as it touches the boundary. A pair is a dislocation:
+//              pair steps (fig. 6; at most `maxTravel`) toward a target and absorbed whole by
+//              AbsorbPair as soon as it touches the boundary; one edit per target: the nearest
+//              boundary irregular vertices (targetsPerPair) and the nearest boundary vertex. A
+//              pair is absorbed whole only where its edge runs along the boundary, so trying
+//              several places along a curved hole finds one more often. A pair is a dislocation:
 //              it carries no curvature (5 + 7 = 12), so moving it never needs a partner; at the
 //              boundary it cancels a boundary 5-7 pair or leaves one (a step in the boundary).
 //   Not used: MoveAlongBoundary (boundary_ops.h). It collapses the v3 b into one boundary
@@ -70,6 +72,8 @@
 #include <limits>
 #include <memory>
 #include <queue>
+#include <set>
+#include <tuple>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
@@ -119,6 +123,8 @@ IrregularByPlace CountIrregularByPlace(MeshType& m) {
 struct BoundaryReductionOptions {
   int rings = 3;           ///< interior v5 / v7 within this many edges of a boundary are candidates
   int maxTravel = 6;       ///< most pair steps a 5-7 pair makes toward the boundary before it is absorbed
+  int targetsPerPair = 3;  ///< boundary irregular vertices (nearest first) a pair tries to reach, besides the
+                           ///< nearest boundary vertex
   bool neutralMoves = true;  ///< second phase: also absorb where the boundary gains what the inside loses
                              ///< (dI + dB = 0), as long as the boundary stays within boundaryLimit
   int boundaryLimit = -1;  ///< most boundary irregular vertices allowed; -1: the count when the stage was
@@ -211,9 +217,20 @@ class BoundaryReduction {
   static constexpr signed char kRegular = 0, kInterior = 1, kBoundary = 2;  ///< a vertex's status
   enum Kind { kAbsorb = 0, kPair = 1 };
 
+  /// An edit for a candidate v: absorb v, or move the pair (v, partner) toward the boundary
+  /// vertex `target` and absorb it. Everything the edit does follows from these (the re-run
+  /// under the guard repeats the probe exactly).
+  struct Plan {
+    int kind = kAbsorb;
+    int partner = -1, target = -1;
+    bool operator<(const Plan& o) const {
+      return std::tie(kind, partner, target) < std::tie(o.kind, o.partner, o.target);
+    }
+  };
+
   /// One edit tried for a candidate: what it touched and what it changed.
   struct Attempt {
-    int kind = -1;
+    Plan plan;
     std::vector<int> touched;  ///< every vertex whose valence changed, created or deleted
     int dInterior = 0, dBoundary = 0;
     int absorbedValence = 0;   ///< absorb: 5 or 7
@@ -267,16 +284,33 @@ class BoundaryReduction {
     return cands;
   }
 
-  /// Tries the three edits for v, applies the best that passes the rules, under the guard.
+  /// The edits to try for v: absorb, and each adjacent 5-7 pair it forms toward each target.
+  std::vector<Plan> Plans(int v) {
+    std::vector<Plan> plans(1);
+    const int d = ed_.Valence(v);
+    for (auto* nb : ed_.Star(v).neighbors) {
+      const int w = ed_.Index(nb);
+      if (ed_.IsBoundary(w) || ed_.Valence(w) != 12 - d || Frozen(w)) continue;
+      for (int t : Targets(d == 5 ? v : w, d == 5 ? w : v)) {
+        Plan p;
+        p.kind = kPair, p.partner = w, p.target = t;
+        plans.push_back(p);
+      }
+    }
+    return plans;
+  }
+
+  /// Tries the edits for v, applies the best that passes the rules, under the guard.
   bool TryCandidate(int v, bool neutral, BoundaryReductionReport& r) {
     Attempt best;
     bool found = false;
-    for (int kind : {kAbsorb, kPair}) {
-      if (Vetoed(v, kind)) continue;  // the guard refused it in the first phase: it would again
+    for (const Plan& plan : Plans(v)) {
+      // the guard refused it in the first phase: it would again
+      if (vetoed_.count(std::make_pair(v, plan))) continue;
       auto cp = ed_.Mark();
       Attempt a;
       ++r.attempts;
-      if (Perform(kind, v, a)) {
+      if (Perform(plan, v, a)) {
         Count(a);
         if (Allowed(a, neutral) &&
             (!found || Score(a) < Score(best) || (Score(a) == Score(best) && a.dInterior < best.dInterior)))
@@ -293,7 +327,7 @@ class BoundaryReduction {
       guard_.begin(around);
     }
     Attempt a;
-    bool ok = Perform(best.kind, v, a);  // deterministic: the same edit as the probe
+    bool ok = Perform(best.plan, v, a);  // deterministic: the same edit as the probe
     if (ok) Count(a);
     if (!ok || !Allowed(a, neutral)) {
       ed_.RollbackTo(cp);
@@ -301,7 +335,7 @@ class BoundaryReduction {
     }
     if (!guard_.accept || !guard_.accept(a.touched)) {
       ed_.RollbackTo(cp);
-      vetoed_[v] |= 1 << best.kind;
+      vetoed_.insert(std::make_pair(v, best.plan));
       ++r.undone;
       return false;
     }
@@ -313,7 +347,7 @@ class BoundaryReduction {
       return false;
     }
     Keep(a);
-    if (a.kind == kPair) {
+    if (a.plan.kind == kPair) {
       ++r.absorbedPairs;
       if (a.steps > 0) ++r.pairsMoved, r.pairSteps += a.steps;
     } else if (a.absorbedValence == 5) {
@@ -324,11 +358,6 @@ class BoundaryReduction {
     if (a.dBoundary < 0) r.cancelled += -a.dBoundary;
     if (a.dBoundary > 0) r.boundaryAdded += a.dBoundary;
     return true;
-  }
-
-  bool Vetoed(int v, int kind) const {
-    auto it = vetoed_.find(v);
-    return it != vetoed_.end() && (it->second >> kind & 1);
   }
 
   static int Score(const Attempt& a) { return a.dInterior + a.dBoundary; }
@@ -387,17 +416,19 @@ class BoundaryReduction {
     boundary_ += a.dBoundary;
   }
 
-  // ------------------------------------------------------------ the three edits
-  bool Perform(int kind, int v, Attempt& a) {
-    a.kind = kind;
-    if (kind == kAbsorb) {
+  // ------------------------------------------------------------ the edits
+  bool Perform(const Plan& plan, int v, Attempt& a) {
+    a.plan = plan;
+    if (plan.kind == kAbsorb) {
       a.absorbedValence = ed_.Valence(v);
       BoundaryOutcome o = bops_.Absorb(v);
       if (!o) return false;
       Add(o, a.touched);
       return true;
     }
-    return PairToBoundary(v, a);
+    const bool five = ed_.Valence(v) == 5;
+    if (!ed_.IsLive(plan.partner) || !ed_.IsLive(plan.target)) return false;
+    return MovePairAndAbsorb(five ? v : plan.partner, five ? plan.partner : v, ed_.V(plan.target)->P(), a);
   }
 
   static void Add(const BoundaryOutcome& o, std::vector<int>& touched) {
@@ -415,14 +446,15 @@ class BoundaryReduction {
     return false;
   }
 
-  /// Where a pair heads: the nearest boundary irregular vertex within reach (BFS from the pair),
-  /// else the nearest boundary vertex. False if no boundary vertex is within reach.
-  bool Target(int v5, int v7, CoordType& goal) {
+  /// Where a pair may head: the nearest boundary irregular vertices within reach (BFS from the
+  /// pair, at most targetsPerPair), and the nearest boundary vertex. Boundary vertices are not
+  /// crossed (the pair stays on this side of the hole).
+  std::vector<int> Targets(int v5, int v7) {
     const int reach = opt_.rings + opt_.maxTravel + 1;
     std::unordered_map<int, int> dist{{v5, 0}, {v7, 0}};
-    std::vector<int> frontier{std::min(v5, v7), std::max(v5, v7)};
+    std::vector<int> frontier{std::min(v5, v7), std::max(v5, v7)}, targets;
     int anyBoundary = -1;
-    for (int r = 1; r <= reach && !frontier.empty(); ++r) {
+    for (int r = 1; r <= reach && !frontier.empty() && int(targets.size()) < opt_.targetsPerPair; ++r) {
       std::vector<int> next;
       for (int x : frontier)
         for (auto* nb : ed_.Star(x).neighbors) {
@@ -431,47 +463,21 @@ class BoundaryReduction {
         }
       std::sort(next.begin(), next.end());
       for (int y : next) {
-        if (Status(y) == kBoundary) {
-          goal = ed_.V(y)->P();
-          return true;
-        }
+        if (Status(y) == kBoundary && int(targets.size()) < opt_.targetsPerPair) targets.push_back(y);
         if (anyBoundary < 0 && ed_.IsBoundary(y)) anyBoundary = y;
       }
-      // boundary vertices are not crossed (the pair stays on this side of the hole)
       next.erase(std::remove_if(next.begin(), next.end(), [&](int y) { return ed_.IsBoundary(y); }), next.end());
       frontier.swap(next);
     }
-    if (anyBoundary < 0) return false;
-    goal = ed_.V(anyBoundary)->P();
-    return true;
+    if (anyBoundary >= 0 && std::find(targets.begin(), targets.end(), anyBoundary) == targets.end())
+      targets.push_back(anyBoundary);
+    return targets;
   }
 
-  /// pair: v and an interior neighbour of the other type form an adjacent 5-7 pair; move it
-  /// toward Target() by pair steps (dry runs choose the step) and absorb it whole.
-  bool PairToBoundary(int v, Attempt& a) {
-    const int d = ed_.Valence(v);
-    if (d != 5 && d != 7) return false;
-    std::vector<int> partners;
-    for (auto* nb : ed_.Star(v).neighbors) {
-      const int w = ed_.Index(nb);
-      if (!ed_.IsBoundary(w) && ed_.Valence(w) == 12 - d && !Frozen(w)) partners.push_back(w);
-    }
-    for (int w : partners) {
-      auto cp = ed_.Mark();
-      Attempt t;
-      t.kind = kPair;
-      if (MovePairAndAbsorb(d == 5 ? v : w, d == 5 ? w : v, t)) {
-        a = t;
-        return true;
-      }
-      ed_.RollbackTo(cp);
-    }
-    return false;
-  }
-
-  bool MovePairAndAbsorb(int v5, int v7, Attempt& a) {
-    CoordType goal;
-    if (!Target(v5, v7, goal)) return false;
+  /// pair: the adjacent 5-7 pair (v5, v7) moves by pair steps toward `goal` (dry runs choose
+  /// the step: the landing vertices exist before the move) and is absorbed whole by AbsorbPair
+  /// as soon as it touches the boundary.
+  bool MovePairAndAbsorb(int v5, int v7, CoordType goal, Attempt& a) {
     auto mid = [&](int x, int y) { return (ed_.V(x)->P() + ed_.V(y)->P()) / 2; };
     a.touched.push_back(v5);
     a.touched.push_back(v7);
@@ -550,7 +556,7 @@ class BoundaryReduction {
   int limit_ = 0;
   std::vector<signed char> status_;  ///< per vertex: kRegular, kInterior or kBoundary (irregular)
   int interior_ = 0, boundary_ = 0;  ///< current counts, kept up to date edit by edit
-  std::unordered_map<int, int> vetoed_;  ///< per candidate (this call): bit k = the guard refused edit kind k
+  std::set<std::pair<int, Plan>> vetoed_;  ///< (candidate, edit) the guard refused in this call
 };
 
 }  // namespace irregular
