@@ -448,7 +448,7 @@ TEST_P(BoundaryReductionCorpus, TrivialGuard) {
     EXPECT_LE(r.boundaryAfter, before.boundary);
     EXPECT_LE(r.interiorAfter, r.interiorBefore);
     total.absorbedV5 += r.absorbedV5, total.absorbedV7 += r.absorbedV7, total.absorbedPairs += r.absorbedPairs;
-    total.cancelled += r.cancelled;
+    total.cancelled += r.cancelled, total.hops += r.hops;
     total.pairSteps += r.pairSteps, total.boundaryAdded += r.boundaryAdded;
     total.interiorAfter = r.interiorAfter, total.boundaryAfter = r.boundaryAfter;
     // the counts kept edit by edit agree with a full recount
@@ -464,10 +464,10 @@ TEST_P(BoundaryReductionCorpus, TrivialGuard) {
   ed.Commit();
   ExpectValid(m);
   std::printf("%s (%d vertices), trivial guard: interior %d -> %d, boundary %d -> %d; absorbed v5 %d, v7 %d, "
-              "pairs %d (%d steps), cancelled %d, boundary added %d\n",
+              "pairs %d (%d steps), hops %d, cancelled %d, boundary added %d\n",
               GetParam().name, LiveVertices(m), before.interior, total.interiorAfter, before.boundary,
               total.boundaryAfter, total.absorbedV5, total.absorbedV7, total.absorbedPairs, total.pairSteps,
-              total.cancelled, total.boundaryAdded);
+              total.hops, total.cancelled, total.boundaryAdded);
 }
 
 TEST_P(BoundaryReductionCorpus, AngleAndHausdorffGuard) {
@@ -493,9 +493,9 @@ TEST_P(BoundaryReductionCorpus, AngleAndHausdorffGuard) {
   ed.Commit();
   ExpectValid(m);
   std::printf("%s (%d vertices), angle/Hausdorff guard: interior %d -> %d, boundary %d -> %d; absorbed v5 %d, "
-              "v7 %d, pairs %d, cancelled %d, boundary added %d, undone %d (angle %d, distance %d)\n",
+              "v7 %d, pairs %d, hops %d, cancelled %d, boundary added %d, undone %d (angle %d, distance %d)\n",
               GetParam().name, LiveVertices(m), before.interior, now.interior, before.boundary, now.boundary,
-              r.absorbedV5 + r2.absorbedV5, r.absorbedV7 + r2.absorbedV7, r.absorbedPairs + r2.absorbedPairs,
+              r.absorbedV5 + r2.absorbedV5, r.absorbedV7 + r2.absorbedV7, r.absorbedPairs + r2.absorbedPairs, r.hops + r2.hops,
               r.cancelled + r2.cancelled,
               r.boundaryAdded + r2.boundaryAdded, r.undone + r2.undone, guard.angleRefusals, guard.distanceRefusals);
 }

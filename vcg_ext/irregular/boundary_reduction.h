@@ -21,7 +21,7 @@
 // Strategy (one pass per call; the driver calls it once per sweep):
 //   candidates: interior v5 / v7 within `rings` edges of a boundary, found by a breadth-first
 //   walk from the boundary vertices (one O(V + F) pass per call), nearest to the boundary first.
-//   For each candidate, two edits are tried (each all or nothing, under one journal mark):
+//   For each candidate, these edits are tried (each all or nothing, under one journal mark):
 //     absorb   Absorb(v) when v touches the boundary (v5: a boundary neighbour, v7: apex of a
 //              boundary edge); Absorb itself picks the boundary vertex that cancels (a boundary
 //              v5 for (B), a boundary v3 end for (A)) when there is one;
@@ -33,6 +33,10 @@
 //              several places along a curved hole finds one more often. A pair is a dislocation:
 //              it carries no curvature (5 + 7 = 12), so moving it never needs a partner; at the
 //              boundary it cancels a boundary 5-7 pair or leaves one (a step in the boundary).
+//     hop      a v5 / v7 two rings in (no boundary neighbour) moves one step onto a neighbour
+//              that touches the boundary, generating an adjacent 5-7 pair (fig. 7, flip form;
+//              Theorem 5.1: a single irregular vertex cannot move alone); the generated pair is
+//              absorbed as above, then the moved vertex: three defects reach the boundary.
 //   Not used: MoveAlongBoundary (boundary_ops.h). It collapses the v3 b into one boundary
 //   neighbour and splits the other along its edge to b's apex a, so the result is the same
 //   configuration relabelled (the new v3 hangs from the same apex a, with the same neighbours up
@@ -160,13 +164,15 @@ struct BoundaryReductionReport {
   int absorbedPairs = 0;  ///< adjacent interior 5-7 pairs absorbed whole
   int pairsMoved = 0;     ///< of those, pairs first moved toward the boundary
   int pairSteps = 0;      ///< pair steps of those moves
+  int hops = 0;           ///< v5 / v7 two rings in that moved one step to the boundary generating a 5-7 pair
+                          ///< (fig. 7), then were absorbed with the pair (not counted in the three above)
   int cancelled = 0;      ///< boundary irregular vertices removed by kept edits (each cancelled an interior one)
   int boundaryAdded = 0;  ///< boundary irregular vertices added by kept neutral edits (paid by `cancelled`)
   int undone = 0;         ///< edits the guard refused, or whose relaxation broke the counting rules; rolled back
   int refused = 0;        ///< candidates no edit could take within the rules (topology, budget, frozen, no reach)
   long attempts = 0;      ///< edits tried, probes included (the effort bound counts these)
   bool effortExhausted = false;  ///< maxAttemptsPerCall was reached
-  int Kept() const { return absorbedV5 + absorbedV7 + absorbedPairs; }
+  int Kept() const { return absorbedV5 + absorbedV7 + absorbedPairs + hops; }
 };
 
 template <class MeshType>
@@ -215,16 +221,17 @@ class BoundaryReduction {
 
  private:
   static constexpr signed char kRegular = 0, kInterior = 1, kBoundary = 2;  ///< a vertex's status
-  enum Kind { kAbsorb = 0, kPair = 1 };
+  enum Kind { kAbsorb = 0, kPair = 1, kHop = 2 };
 
   /// An edit for a candidate v: absorb v, or move the pair (v, partner) toward the boundary
   /// vertex `target` and absorb it. Everything the edit does follows from these (the re-run
   /// under the guard repeats the probe exactly).
   struct Plan {
     int kind = kAbsorb;
-    int partner = -1, target = -1;
+    int partner = -1, target = -1;  ///< pair: the other vertex of the pair, the boundary vertex it heads for
+    int k = -1;                     ///< hop: the neighbour index of MoveWithPairGeneration
     bool operator<(const Plan& o) const {
-      return std::tie(kind, partner, target) < std::tie(o.kind, o.partner, o.target);
+      return std::tie(kind, partner, target, k) < std::tie(o.kind, o.partner, o.target, o.k);
     }
   };
 
@@ -297,6 +304,15 @@ class BoundaryReduction {
         plans.push_back(p);
       }
     }
+    // hop: v one step toward the boundary, onto a neighbour that touches it
+    if (!TouchesBoundary(v))
+      for (int k = 0; k < d; ++k) {
+        AtomicPrediction g = ops_.PredictMoveWithPairGeneration(v, k);
+        if (!g || !TouchesBoundary(g.moved)) continue;
+        Plan p;
+        p.kind = kHop, p.k = k;
+        plans.push_back(p);
+      }
     return plans;
   }
 
@@ -347,7 +363,9 @@ class BoundaryReduction {
       return false;
     }
     Keep(a);
-    if (a.plan.kind == kPair) {
+    if (a.plan.kind == kHop) {
+      ++r.hops;
+    } else if (a.plan.kind == kPair) {
       ++r.absorbedPairs;
       if (a.steps > 0) ++r.pairsMoved, r.pairSteps += a.steps;
     } else if (a.absorbedValence == 5) {
@@ -426,6 +444,7 @@ class BoundaryReduction {
       Add(o, a.touched);
       return true;
     }
+    if (plan.kind == kHop) return Hop(v, plan.k, a);
     const bool five = ed_.Valence(v) == 5;
     if (!ed_.IsLive(plan.partner) || !ed_.IsLive(plan.target)) return false;
     return MovePairAndAbsorb(five ? v : plan.partner, five ? plan.partner : v, ed_.V(plan.target)->P(), a);
@@ -472,6 +491,39 @@ class BoundaryReduction {
     if (anyBoundary >= 0 && std::find(targets.begin(), targets.end(), anyBoundary) == targets.end())
       targets.push_back(anyBoundary);
     return targets;
+  }
+
+  /// hop: an interior v5 / v7 two rings from the boundary moves one step onto a neighbour that
+  /// touches it, generating an adjacent 5-7 pair (fig. 7, flip form); the generated pair is
+  /// carried to the boundary and absorbed whole (pair, first target that works), then the moved
+  /// vertex is absorbed. Net: the interior loses the vertex; the boundary takes three defects
+  /// (+1 -1 +1 for a v5), which cancel against boundary irregular vertices where they land.
+  bool Hop(int v, int k, Attempt& a) {
+    a.absorbedValence = ed_.Valence(v);
+    AtomicOutcome g = ops_.MoveWithPairGeneration(v, k);
+    if (!g) return false;
+    for (auto& kv : g.changes)
+      if (Frozen(kv.first)) return false;
+    Add(g, a.touched);
+    RelaxBetween({g.moved, g.pair5, g.pair7});
+    const int moved = g.moved;
+    bool absorbed = false;
+    for (int t : Targets(g.pair5, g.pair7)) {
+      auto cp = ed_.Mark();
+      Attempt pa;
+      if (MovePairAndAbsorb(g.pair5, g.pair7, ed_.V(t)->P(), pa)) {
+        a.touched.insert(a.touched.end(), pa.touched.begin(), pa.touched.end());
+        a.steps = pa.steps;
+        absorbed = true;
+        break;
+      }
+      ed_.RollbackTo(cp);
+    }
+    if (!absorbed || !ed_.IsLive(moved) || ed_.Valence(moved) != a.absorbedValence) return false;
+    BoundaryOutcome o = bops_.Absorb(moved);
+    if (!o) return false;
+    Add(o, a.touched);
+    return true;
   }
 
   /// pair: the adjacent 5-7 pair (v5, v7) moves by pair steps toward `goal` (dry runs choose
