@@ -163,44 +163,48 @@ TEST(BoundaryReduction, CancelsAV5AgainstABoundaryV5) {
   ExpectValid(m);
 }
 
-// A 5-7 pair generated from the boundary (leaving the boundary 5-7 pair b = 3, ob = 5) and
-// moved two pair steps inward: the stage moves it back (dry runs choose the steps toward the
-// nearest boundary irregular vertex) and absorbs it whole, cancelling the boundary pair.
-TEST(BoundaryReduction, MovesAPairBackToTheBoundaryAndCancelsIt) {
-  TMesh m;
-  test::HexPatch(m, 5);
-  int v5 = -1, v7 = -1, b = At(m, 3, 2);
-  {
-    MeshEditor<TMesh> ed(m);
-    BoundaryOperations<TMesh> bo(ed);
-    AtomicOperations<TMesh> ops(ed);
-    BoundaryOutcome g = bo.GeneratePair(b, 0);
-    ASSERT_TRUE(g) << g.result.reason;
-    v5 = g.v5, v7 = g.v7;
-    // two steps in the direction that takes the pair's midpoint farthest from b
-    for (int s = 0; s < 2; ++s) {
-      int best = -1;
-      double far = -1;
-      for (int dir = 0; dir < 6; ++dir) {
-        AtomicPrediction p = ops.PredictMovePair57(v5, v7, dir);
-        if (!p) continue;
-        const double d = double((((m.vert[size_t(p.pair5)].P() + m.vert[size_t(p.pair7)].P()) / 2) -
-                                 m.vert[size_t(b)].P()).Norm());
-        if (d > far) far = d, best = dir;
-      }
-      ASSERT_GE(best, 0);
-      AtomicOutcome o = ops.MovePair57(v5, v7, best);
-      ASSERT_TRUE(o) << o.result.reason;
-      v5 = o.pair5, v7 = o.pair7;
-    }
-    ed.Commit();
-  }
-  Irregular ir = IrregularOf(m);
-  ASSERT_EQ(ir.interior.size(), 2u);
-  ASSERT_EQ(ir.boundary.size(), 2u);
-  ASSERT_FALSE(test::IrregularVertices(m).empty());
+namespace {
+/// GeneratePair at boundary vertex b (leaving the boundary 5-7 pair b = 3, ob = 5), then the
+/// interior pair moved `steps` pair steps away from b (each step: the move taking the pair's
+/// midpoint farthest from b). *v5, *v7: where the pair ends.
+void PairMovedInward(TMesh& m, int b, int steps, int* v5, int* v7) {
   MeshEditor<TMesh> ed(m);
-  ASSERT_FALSE(ed.Adjacent(v5, b) || ed.Adjacent(v7, b));
+  BoundaryOperations<TMesh> bo(ed);
+  AtomicOperations<TMesh> ops(ed);
+  BoundaryOutcome g = bo.GeneratePair(b, 0);
+  ASSERT_TRUE(g) << g.result.reason;
+  *v5 = g.v5, *v7 = g.v7;
+  for (int s = 0; s < steps; ++s) {
+    int best = -1;
+    double far = -1;
+    for (int dir = 0; dir < 6; ++dir) {
+      AtomicPrediction p = ops.PredictMovePair57(*v5, *v7, dir);
+      if (!p) continue;
+      const double d = double((((m.vert[size_t(p.pair5)].P() + m.vert[size_t(p.pair7)].P()) / 2) -
+                               m.vert[size_t(b)].P()).Norm());
+      if (d > far) far = d, best = dir;
+    }
+    ASSERT_GE(best, 0);
+    AtomicOutcome o = ops.MovePair57(*v5, *v7, best);
+    ASSERT_TRUE(o) << o.result.reason;
+    *v5 = o.pair5, *v7 = o.pair7;
+  }
+  ed.Commit();
+  ASSERT_FALSE(ed.Adjacent(*v5, b) || ed.Adjacent(*v7, b));
+}
+
+/// The stage on a mesh whose only irregular vertices are the pair of PairMovedInward (2 steps)
+/// and the boundary pair it left: the pair is moved back and absorbed whole, the boundary pair
+/// cancelled, nothing irregular is left and the vertex count is the patch's.
+void ExpectPairBroughtBackAndCancelled(TMesh& m, int b, int liveVertices) {
+  int v5 = -1, v7 = -1;
+  PairMovedInward(m, b, 2, &v5, &v7);
+  Irregular ir = IrregularOf(m);
+  std::vector<int> pair{v5, v7};
+  std::sort(pair.begin(), pair.end());
+  ASSERT_EQ(ir.interior, pair);
+  ASSERT_EQ(ir.boundary.size(), 2u);
+  MeshEditor<TMesh> ed(m);
   CheckingGuard cg(m);
   BoundaryReduction<TMesh> br(ed, nullptr, cg.Make());
   BoundaryReductionReport r = br.Run();
@@ -218,8 +222,30 @@ TEST(BoundaryReduction, MovesAPairBackToTheBoundaryAndCancelsIt) {
   ir = IrregularOf(m);
   EXPECT_TRUE(ir.interior.empty());
   EXPECT_TRUE(ir.boundary.empty());
-  EXPECT_EQ(LiveVertices(m), 91);  // HexPatch(5): 3 r (r + 1) + 1
+  EXPECT_EQ(LiveVertices(m), liveVertices);
   ExpectValid(m);
+}
+}  // namespace
+
+// A 5-7 pair generated from the outer boundary and moved two pair steps inward: the stage moves
+// it back (dry runs choose the steps toward the nearest boundary irregular vertex) and absorbs
+// it whole, cancelling the boundary pair.
+TEST(BoundaryReduction, MovesAPairBackToTheBoundaryAndCancelsIt) {
+  TMesh m;
+  test::HexPatch(m, 5);
+  ExpectPairBroughtBackAndCancelled(m, At(m, 3, 2), 91);  // HexPatch(5): 3 r (r + 1) + 1
+}
+
+// The same at a hole: an annulus (HexPatch(6) without the faces within 2 rings of the centre;
+// the hole's corners of 240 degrees are regular at valence 5), the pair generated at the side
+// vertex (1, 1) of the hole.
+TEST(BoundaryReduction, MovesAPairBackToAHoleAndCancelsIt) {
+  TMesh m;
+  test::HexPatchWithHole(m, 6, 2);
+  const int live = LiveVertices(m);
+  ASSERT_TRUE(IrregularOf(m).interior.empty());
+  ASSERT_TRUE(IrregularOf(m).boundary.empty());
+  ExpectPairBroughtBackAndCancelled(m, At(m, 1, 1), live);
 }
 
 // The budget rule: a lone interior v5 next to a regular stretch of boundary can only be

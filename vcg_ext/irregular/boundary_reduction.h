@@ -27,7 +27,7 @@
 //              v5 for (B), a boundary v3 end for (A)) when there is one;
 //     pair     an adjacent interior 5-7 pair (v and a neighbour of the other type) is moved by
 //              pair steps (fig. 6; at most `maxTravel`) toward a target and absorbed whole by
-//              AbsorbPair as soon as it touches the boundary; one edit per target: the nearest
+//              AbsorbPair as soon as it touches the boundary near the target; one edit per target: the nearest
 //              boundary irregular vertices (targetsPerPair) and the nearest boundary vertex. A
 //              pair is absorbed whole only where its edge runs along the boundary, so trying
 //              several places along a curved hole finds one more often. A pair is a dislocation:
@@ -528,13 +528,16 @@ class BoundaryReduction {
 
   /// pair: the adjacent 5-7 pair (v5, v7) moves by pair steps toward `goal` (dry runs choose
   /// the step: the landing vertices exist before the move) and is absorbed whole by AbsorbPair
-  /// as soon as it touches the boundary.
+  /// as soon as it touches the boundary near the goal.
   bool MovePairAndAbsorb(int v5, int v7, CoordType goal, Attempt& a) {
     auto mid = [&](int x, int y) { return (ed_.V(x)->P() + ed_.V(y)->P()) / 2; };
     a.touched.push_back(v5);
     a.touched.push_back(v7);
     for (int s = 0;; ++s) {
-      if (TouchesBoundary(v5) || TouchesBoundary(v7)) {
+      // absorbed where it touches the boundary near the goal (two edge lengths), not on the way
+      // past another stretch of boundary
+      const double near = 2.0 * double((ed_.V(v5)->P() - ed_.V(v7)->P()).Norm());
+      if ((TouchesBoundary(v5) || TouchesBoundary(v7)) && double((mid(v5, v7) - goal).Norm()) <= near) {
         auto cp = ed_.Mark();
         BoundaryOutcome o = bops_.AbsorbPair(v5, v7);
         if (o) {
