@@ -158,7 +158,7 @@ struct BoundaryReductionReport {
   int interiorBefore = 0, interiorAfter = 0;  ///< interior irregular vertices of the whole mesh
   int boundaryBefore = 0, boundaryAfter = 0;  ///< boundary irregular vertices (corner rule), whole mesh
   int boundaryLimit = 0;  ///< the most boundary irregular vertices allowed (the input's)
-  int candidates = 0;     ///< interior v5 / v7 within `rings` of a boundary at the start of the call
+  int candidates = 0;     ///< interior v5 / v7 within `rings` of a boundary at the start of the call (summed by Add)
   int absorbedV5 = 0;     ///< single interior v5 absorbed (boundary split, (B))
   int absorbedV7 = 0;     ///< single interior v7 absorbed (boundary-edge collapse, (A))
   int absorbedPairs = 0;  ///< adjacent interior 5-7 pairs absorbed whole
@@ -173,6 +173,18 @@ struct BoundaryReductionReport {
   long attempts = 0;      ///< edits tried, probes included (the effort bound counts these)
   bool effortExhausted = false;  ///< maxAttemptsPerCall was reached
   int Kept() const { return absorbedV5 + absorbedV7 + absorbedPairs + hops; }
+  /// Sums the counts of a later call into this one (the driver's total over its sweeps): the
+  /// "before" values stay the first call's, the "after" values become the later call's.
+  void Add(const BoundaryReductionReport& o) {
+    if (attempts == 0 && Kept() == 0 && undone == 0) interiorBefore = o.interiorBefore, boundaryBefore = o.boundaryBefore;
+    interiorAfter = o.interiorAfter, boundaryAfter = o.boundaryAfter, boundaryLimit = o.boundaryLimit;
+    candidates += o.candidates;
+    absorbedV5 += o.absorbedV5, absorbedV7 += o.absorbedV7, absorbedPairs += o.absorbedPairs;
+    pairsMoved += o.pairsMoved, pairSteps += o.pairSteps, hops += o.hops;
+    cancelled += o.cancelled, boundaryAdded += o.boundaryAdded, undone += o.undone, refused += o.refused;
+    attempts += o.attempts;
+    effortExhausted = effortExhausted || o.effortExhausted;
+  }
 };
 
 template <class MeshType>
