@@ -520,7 +520,8 @@ TEST_P(BoundaryReductionCorpus, AngleAndHausdorffGuard) {
   std::printf("%s (%d vertices), angle/Hausdorff guard: interior %d -> %d, boundary %d -> %d; absorbed v5 %d, "
               "v7 %d, pairs %d, hops %d, cancelled %d, boundary added %d, undone %d (angle %d, distance %d)\n",
               GetParam().name, LiveVertices(m), before.interior, now.interior, before.boundary, now.boundary,
-              r.absorbedV5 + r2.absorbedV5, r.absorbedV7 + r2.absorbedV7, r.absorbedPairs + r2.absorbedPairs, r.hops + r2.hops,
+              r.absorbedV5 + r2.absorbedV5, r.absorbedV7 + r2.absorbedV7, r.absorbedPairs + r2.absorbedPairs,
+              r.hops + r2.hops,
               r.cancelled + r2.cancelled,
               r.boundaryAdded + r2.boundaryAdded, r.undone + r2.undone, guard.angleRefusals, guard.distanceRefusals);
 }

@@ -27,8 +27,9 @@
 //              v5 for (B), a boundary v3 end for (A)) when there is one;
 //     pair     an adjacent interior 5-7 pair (v and a neighbour of the other type) is moved by
 //              pair steps (fig. 6; at most `maxTravel`) toward a target and absorbed whole by
-//              AbsorbPair as soon as it touches the boundary near the target; one edit per target: the nearest
-//              boundary irregular vertices (targetsPerPair) and the nearest boundary vertex. A
+//              AbsorbPair as soon as it touches the boundary near the target; one edit per
+//              target: the nearest boundary irregular vertices (targetsPerPair) and the nearest
+//              boundary vertex. A
 //              pair is absorbed whole only where its edge runs along the boundary, so trying
 //              several places along a curved hole finds one more often. A pair is a dislocation:
 //              it carries no curvature (5 + 7 = 12), so moving it never needs a partner; at the
@@ -172,11 +173,13 @@ struct BoundaryReductionReport {
   int refused = 0;        ///< candidates no edit could take within the rules (topology, budget, frozen, no reach)
   long attempts = 0;      ///< edits tried, probes included (the effort bound counts these)
   bool effortExhausted = false;  ///< maxAttemptsPerCall was reached
+  int calls = 0;          ///< calls of Run() this report covers (1, or the number summed by Add)
   int Kept() const { return absorbedV5 + absorbedV7 + absorbedPairs + hops; }
   /// Sums the counts of a later call into this one (the driver's total over its sweeps): the
   /// "before" values stay the first call's, the "after" values become the later call's.
   void Add(const BoundaryReductionReport& o) {
-    if (attempts == 0 && Kept() == 0 && undone == 0) interiorBefore = o.interiorBefore, boundaryBefore = o.boundaryBefore;
+    if (calls == 0) interiorBefore = o.interiorBefore, boundaryBefore = o.boundaryBefore;
+    calls += o.calls;
     interiorAfter = o.interiorAfter, boundaryAfter = o.boundaryAfter, boundaryLimit = o.boundaryLimit;
     candidates += o.candidates;
     absorbedV5 += o.absorbedV5, absorbedV7 += o.absorbedV7, absorbedPairs += o.absorbedPairs;
@@ -198,7 +201,8 @@ class BoundaryReduction {
   /// touched (may be null; vertices created later are free). Counts the input's boundary
   /// irregular vertices (the limit) unless opt.boundaryLimit >= 0. O(V + F).
   BoundaryReduction(Editor& ed, const SurfaceProjector* original, BoundaryEditGuard guard,
-                    const std::vector<char>* frozen = nullptr, BoundaryReductionOptions opt = BoundaryReductionOptions())
+                    const std::vector<char>* frozen = nullptr,
+                    BoundaryReductionOptions opt = BoundaryReductionOptions())
       : ed_(ed), m_(ed.Mesh()), original_(original), guard_(std::move(guard)), frozen_(frozen), opt_(opt),
         bops_(ed), ops_(ed), curve_(ed.Mesh()) {
     limit_ = opt_.boundaryLimit >= 0 ? opt_.boundaryLimit : CountIrregularByPlace(m_).boundary;
@@ -209,6 +213,7 @@ class BoundaryReduction {
   /// One pass over the interior irregular vertices near the boundaries (see the header).
   BoundaryReductionReport Run() {
     BoundaryReductionReport r;
+    r.calls = 1;
     r.boundaryLimit = limit_;
     std::vector<int> cands = BuildStatus();
     vetoed_.clear();
