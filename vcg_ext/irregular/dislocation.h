@@ -415,6 +415,21 @@ class DislocationAnalysis {
     return r;
   }
 
+  /// Graph distances (at most `bound`) from the vertices `from`.
+  std::unordered_map<int, int> Distances(const std::vector<int>& from, int bound) {
+    std::unordered_map<int, int> d;
+    std::vector<int> q;
+    for (int v : from)
+      if (d.emplace(v, 0).second) q.push_back(v);
+    for (size_t i = 0; i < q.size(); ++i) {
+      const int v = q[i], dv = d[v];
+      if (dv >= bound) continue;
+      for (VertexType* n : StarOf<MeshType>(V(v)).neighbors)
+        if (d.emplace(Index(n), dv + 1).second) q.push_back(Index(n));
+    }
+    return d;
+  }
+
   /// The connected cluster of interior irregular vertices containing v (adjacency), at most
   /// `bound` vertices; sorted.
   std::vector<int> ClusterOf(int v, int bound = 64) {
@@ -630,21 +645,6 @@ class DislocationAnalysis {
       }
     }
     return false;
-  }
-
-  /// Graph distances (at most `bound`) from the vertices `from`.
-  std::unordered_map<int, int> Distances(const std::vector<int>& from, int bound) {
-    std::unordered_map<int, int> d;
-    std::vector<int> q;
-    for (int v : from)
-      if (d.emplace(v, 0).second) q.push_back(v);
-    for (size_t i = 0; i < q.size(); ++i) {
-      const int v = q[i], dv = d[v];
-      if (dv >= bound) continue;
-      for (VertexType* n : StarOf<MeshType>(V(v)).neighbors)
-        if (d.emplace(Index(n), dv + 1).second) q.push_back(Index(n));
-    }
-    return d;
   }
 
   /// Chooses meetings: per connected component of the candidate graph, exactly (most
