@@ -2,6 +2,8 @@
 // constructed meshes (exact reasons per vertex) and on a reduced corpus mesh (counts).
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <cstdlib>
 #include <map>
 #include <vector>
 
@@ -177,4 +179,76 @@ TEST(LeftoverReasons, BoundaryAndProtected) {
   LeftoverReport rp = ExplainLeftovers(m, opt);
   EXPECT_EQ(rp.protectedCount + rp.boundary, rp.total);
   EXPECT_EQ(rp.protectedCount, r.total - r.boundary);
+}
+
+namespace {
+/// A corpus mesh remeshed to about n vertices and reduced; *input: the surface as loaded.
+bool Reduced(TMesh& m, const char* name, int n, ReductionReport* rep) {
+  if (!test::LoadCorpus(m, name)) return false;
+  SurfaceProjector input(m);
+  RemeshOptions ro;
+  ro.targetEdgeLength = EdgeLengthForVertexCount(vcg::tri::Stat<TMesh>::ComputeMeshArea(m), n);
+  RemeshIsotropic(m, ro);
+  AutomaticReduction<TMesh> ar(m, input);
+  *rep = ar.Run();
+  return true;
+}
+}  // namespace
+
+// bunny00 remeshed to about 3000 vertices and reduced: every leftover has one reason, the
+// counts add up to the leftover count, and the v5 at the tip of the ear (the mesh's top-most
+// vertex, or within 3 rings of it) is a cap.
+TEST(LeftoverReasons, ReducedBunnyCountsAddUpAndTheEarTipIsACap) {
+  TMesh m;
+  ReductionReport rep;
+  ASSERT_TRUE(Reduced(m, "bunny00.off", 3000, &rep)) << "corpus mesh missing (run scripts/setup.sh)";
+  ASSERT_TRUE(rep) << rep.result.reason;
+  LeftoverReport r = ExplainLeftovers(m);
+  std::printf("bunny00 (3000 vertices) after the reduction: %s\n", r.Summary().c_str());
+  ExpectCountsAddUp(r);
+  EXPECT_EQ(r.total, int(test::IrregularVertices(m).size()));
+  EXPECT_GT(r.caps, 0);
+  EXPECT_GT(r.saddles, 0);
+  int top = 0;
+  for (size_t i = 0; i < m.vert.size(); ++i)
+    if (m.vert[i].P()[1] > m.vert[size_t(top)].P()[1]) top = int(i);
+  const std::vector<int> tip = KRing(m, {top}, 3);
+  int tipFives = 0;
+  for (auto& v : r.vertices) {
+    if (v.valence != 5 || !std::binary_search(tip.begin(), tip.end(), v.vertex)) continue;
+    ++tipFives;
+    EXPECT_EQ(v.reason, LeftoverReason::Cap) << v.vertex << ": " << LeftoverReasonName(v.reason);
+    EXPECT_GT(v.curvature, M_PI / 6);
+  }
+  EXPECT_GE(tipFives, 1);
+  // the plan for what is left: every meeting uses sites of the right kinds
+  DislocationAnalysis<TMesh> da(m);
+  MeetingPlan plan = da.Plan();
+  std::printf("plan: %s\n", plan.Summary().c_str());
+  for (auto& pm : plan.meetings) {
+    EXPECT_EQ(pm.vertices.size(), pm.kind == MeetingKind::Quadruple ? 4u : 3u);
+    EXPECT_LE(pm.distance, pm.kind == MeetingKind::LoneTriple ? 24 : 12);
+  }
+}
+
+// Measurement (run by hand): FI_MEASURE_MODEL=knot1.off FI_MEASURE_VERTICES=19000
+// build/tests/unit_tests --gtest_also_run_disabled_tests --gtest_filter='*MeasureCorpus*'
+TEST(LeftoverReasons, DISABLED_MeasureCorpus) {
+  const char* model = std::getenv("FI_MEASURE_MODEL");
+  const char* size = std::getenv("FI_MEASURE_VERTICES");
+  TMesh m;
+  ReductionReport rep;
+  ASSERT_TRUE(Reduced(m, model ? model : "knot1.off", size ? std::atoi(size) : 19000, &rep));
+  ASSERT_TRUE(rep) << rep.result.reason;
+  const auto t0 = std::chrono::steady_clock::now();
+  LeftoverReport r = ExplainLeftovers(m);
+  const auto t1 = std::chrono::steady_clock::now();
+  DislocationAnalysis<TMesh> da(m);
+  MeetingPlan plan = da.Plan();
+  const auto t2 = std::chrono::steady_clock::now();
+  ExpectCountsAddUp(r);
+  std::printf("%s, %d vertices: irregular %d -> %d in %.1f s\n  reasons (%.3f s): %s\n  plan (%.3f s): %s\n",
+              model ? model : "knot1.off", m.vn, rep.irregularBefore, rep.irregularAfter, rep.seconds,
+              std::chrono::duration<double>(t1 - t0).count(), r.Summary().c_str(),
+              std::chrono::duration<double>(t2 - t1).count(), plan.Summary().c_str());
 }
