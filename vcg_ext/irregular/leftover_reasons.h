@@ -5,8 +5,11 @@
 //   protected  it or a neighbour is frozen (the user's protected selection);
 //   cap        a v5 (any valence < 6) where the surface is convex: the discrete Gaussian
 //              curvature (angle defect, 2 pi - sum of the angles at a vertex) summed over the
-//              `curvatureRings`-ring around it is at least `curvatureShare` of the pi / 3 a
-//              v5 stands for (eq. 1). The curvature needs it there;
+//              k-ring around it is at least `curvatureShare` of the pi / 3 a v5 stands for
+//              (eq. 1). k is half the distance to the nearest other irregular vertex (the
+//              vertex's own share of the surface, as eq. 2 hands curvature out), clamped to
+//              [curvatureRings, maxCurvatureRings]: on a finer mesh the same curvature spreads
+//              over more rings. The curvature needs it there;
 //   saddle     likewise a v7 (valence > 6) where that sum is at most -curvatureShare * pi / 3;
 //   thin       the part is thinner than `thinEdges` mean edge lengths (see below): a thin tube
 //              or plate needs irregular vertices that the angle bound does not let go;
@@ -60,7 +63,8 @@ inline const char* LeftoverReasonName(LeftoverReason r) {
 }
 
 struct LeftoverOptions {
-  int curvatureRings = 3;        ///< rings summed for the curvature test
+  int curvatureRings = 3;        ///< rings summed for the curvature test, at least ...
+  int maxCurvatureRings = 6;     ///< ... and up to halfway to the nearest other irregular vertex, at most this
   double curvatureShare = 0.5;   ///< share of pi / 3 the summed angle defect must reach (sign of the valence's)
   double thinEdges = 4;          ///< thinner than this many mean edge lengths: a thin part
   int reach = 12;                ///< travel bound (edges) within which a partner counts
@@ -79,6 +83,8 @@ struct LeftoverVertex {
   LeftoverReason reason = LeftoverReason::Untried;
   unsigned flags = 0;             ///< bit (1 << reason) for every test that holds
   double curvature = 0;           ///< angle defect summed over the rings (radians)
+  int curvatureRings = 0;         ///< the rings summed
+  int nearestIrregular = -1;      ///< edges to the nearest other irregular vertex outside its cluster (-1: none within reach)
   double thickness = std::numeric_limits<double>::infinity();  ///< in mean edge lengths; inf: not
                                   ///< thinner than thinEdges
   int partner = -1;               ///< nearest irregular vertex it could cancel with, within reach (-1: none)
@@ -162,18 +168,18 @@ class LeftoverAnalysis {
     }
     if (nearBoundary) set(LeftoverReason::Boundary);
     if (prot) set(LeftoverReason::Protected);
-    // curvature over the rings
-    lv.curvature = AngleDefectAround(v, opt_.curvatureRings);
+    if (!s.boundary) NearestPartner(v, &lv.partner, &lv.partnerDistance, &lv.nearestIrregular);
+    if (!s.boundary && lv.partner < 0) set(LeftoverReason::NoPartner);
+    // curvature over the vertex's share of the surface
+    const int far = lv.nearestIrregular < 0 ? opt_.maxCurvatureRings : lv.nearestIrregular / 2;
+    lv.curvatureRings = std::max(opt_.curvatureRings, std::min(opt_.maxCurvatureRings, far));
+    lv.curvature = AngleDefectAround(v, lv.curvatureRings);
     const double need = opt_.curvatureShare * M_PI / 3;
     const int excess = lv.valence - regular;  // < 0: a v5-like vertex, > 0: v7-like
     if (!s.boundary && excess < 0 && lv.curvature >= need) set(LeftoverReason::Cap);
     if (!s.boundary && excess > 0 && lv.curvature <= -need) set(LeftoverReason::Saddle);
     lv.thickness = Thickness(v, s);
     if (lv.thickness < opt_.thinEdges) set(LeftoverReason::Thin);
-    if (!s.boundary) {
-      NearestPartner(v, &lv.partner, &lv.partnerDistance);
-      if (lv.partner < 0) set(LeftoverReason::NoPartner);
-    }
     if (opt_.undone) {
       std::unordered_map<int, int> ring = Rings(v, opt_.undoneRings);
       for (auto& kv : ring)
@@ -256,7 +262,9 @@ class LeftoverAnalysis {
   /// The nearest interior irregular vertex within opt.reach edges outside v's cluster (its
   /// adjacent irregular vertices, transitively) that could cancel with it: any, if the cluster
   /// has net charge 0 (a 5-7 pair); else one whose own cluster has charge 0 or the other sign.
-  void NearestPartner(int v, int* partner, int* distance) {
+  /// *nearest: edges to the nearest interior irregular vertex outside the cluster, whatever
+  /// its type (-1: none within reach).
+  void NearestPartner(int v, int* partner, int* distance, int* nearest) {
     std::vector<int> cluster = ClusterOf(v);
     std::unordered_set<int> own(cluster.begin(), cluster.end());
     int q = 0;
@@ -267,6 +275,7 @@ class LeftoverAnalysis {
     for (size_t i = 0; i < queue.size(); ++i) {
       const int x = queue[i], dx = d[x];
       if (!own.count(x) && InteriorIrregular(x)) {
+        if (*nearest < 0) *nearest = dx;
         int qx = 0;
         for (int y : ClusterOf(x)) qx += Charge(y);
         if (q == 0 || qx == 0 || (qx > 0) != (q > 0)) {
