@@ -174,7 +174,8 @@ struct PlannedMeeting {
   int removes = 0;            ///< irregular vertices the cancellation removes (4 or 2)
   int survivorValence = 0;    ///< Triple / LoneTriple: 5 or 7, the lone vertex left; Merge: 0 (a pair is left)
   LatticeVector remaining;    ///< Merge: the Burgers vector of the pair left (first's frame)
-  bool ambiguous = false;     ///< the Burgers comparison deciding the kind was ambiguous
+  bool ambiguous = false;     ///< the Burgers comparison deciding the kind was ambiguous, or impossible
+                              ///< (no route of regular vertices: then planned as a merge)
   std::string Describe() const {
     std::ostringstream o;
     o << MeetingKindName(kind) << " of vertices";
@@ -189,7 +190,7 @@ struct PlannedMeeting {
 
 struct MatchingOptions {
   int reach = 12;           ///< most edges between two sites that may meet (the travel bound)
-  int maxExact = 16;        ///< components of at most this many sites are matched exactly (subset DP);
+  int maxExact = 16;        ///< components of at most this many sites (at most 20) are matched exactly (subset DP);
                             ///< larger ones greedily (most removed first, then the shortest route)
   bool loneTriples = true;  ///< also plan triples of three lone vertices
   int loneTripleFanout = 6; ///< lone vertices considered around each odd vertex for those triples
@@ -486,7 +487,13 @@ class DislocationAnalysis {
   }
 
   /// The global plan (see MeetingPlan) for the given interior irregular vertices (every one
-  /// of the mesh if empty: one O(V) pass).
+  /// of the mesh if empty: one O(V) pass). Sites of kind Other are never planned. Candidate
+  /// meetings: two sites whose nearest vertices are at most opt.reach edges apart along a
+  /// path that passes no other irregular vertex (pair + pair: a quadruple if the Burgers
+  /// vectors are opposite, else a merge; pair + lone: a triple), and, for each lone vertex,
+  /// two lone vertices of the other valence within reach of it (a lone triple, its route the
+  /// sum of the two distances). The route of a two-site meeting is the separatrix path
+  /// (separatrix.h) between the nearest vertices when one exists within reach.
   MeetingPlan Plan(std::vector<int> irregular = {}, const MatchingOptions& opt = MatchingOptions()) {
     if (irregular.empty()) {
       ValenceField<MeshType> vf = ComputeValences(m_);
@@ -546,7 +553,7 @@ class DislocationAnalysis {
         if (A.kind == DefectSite::Kind::Pair && B.kind == DefectSite::Kind::Pair) {
           BurgersComparison c = Compare(A.circuit, B.circuit, opt.reach + 4, opt.ambiguitySlack);
           pm.first = int(s), pm.second = int(t);
-          pm.ambiguous = c.result.ok && c.ambiguous;
+          pm.ambiguous = !c.result.ok || c.ambiguous;  // not comparable: a merge, flagged
           if (c && c.opposite) {
             pm.kind = MeetingKind::Quadruple, pm.removes = 4;
             pm.vertices = {A.v5, A.v7, B.v5, B.v7};
@@ -674,7 +681,7 @@ class DislocationAnalysis {
       const std::vector<int>& sites = comp.second;
       const std::vector<int>& cs = candOf[comp.first];
       if (cs.empty()) continue;
-      if (int(sites.size()) <= std::min(opt.maxExact, 24)) {
+      if (int(sites.size()) <= std::min(opt.maxExact, 20)) {
         ++plan.exactComponents;
         std::unordered_map<int, int> local;
         for (size_t i = 0; i < sites.size(); ++i) local[sites[i]] = int(i);
