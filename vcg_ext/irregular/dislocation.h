@@ -16,9 +16,11 @@
 //     the disclination absorbs the translation by moving one step;
 //   * two pairs whose vectors are not opposite still give a triple (one pair with one vertex
 //     of the other), leaving one pair with b1 + b2.
-// The 60-degree rule: the two flip moves of fig. 6 (directions 1 and 4 of atomic_ops.h, which
-// keep the vertex count) glide the pair along b; b is the lattice step 60 degrees
-// counter-clockwise from the v5-to-v7 edge's sector, of the sign of direction 4 (tested).
+// The 60-degree rule: in lattice coordinates of the undistorted lattice (read from vertex
+// indices on a flat torus, where flips keep indices), b is the step of the v5->v7 edge turned
+// 60 degrees clockwise; the two flip moves of fig. 6 (directions 1 and 4 of atomic_ops.h, which
+// keep the vertex count) glide the pair along b: direction 4 moves it by b, direction 1 by -b;
+// the four collapse / split moves climb (tested for all six orientations).
 //
 // Comparing two pairs needs one frame: a lattice frame (a regular vertex and the neighbour
 // that is its step e0) is carried from one pair's circuit to the other's through regular
