@@ -710,15 +710,17 @@ def cmd_bench(a):
     if memory:
         lines += ["", "Memory: peak resident memory of the reduction of %s: %.0f MiB, of a run that only loads and "
                   "saves it: %.0f MiB, ratio %.2f (reduction cpu %.0f s)." % (
-                      memory["what"], memory["reduce"], memory["loadsave"], memory["ratio"], memory.get("reduce_cpu", 0))]
+                      memory["what"], memory["reduce"], memory["loadsave"], memory["ratio"],
+                      memory.get("reduce_cpu", 0))]
     if plot_info:
-        lines += ["", "Plot: %s (%s)." % (plot_info[0], ", ".join("%s: %d at %.2fx" % (l, n, x)
-                                                                  for l, x, n in plot_info[1]))]
+        lines += ["", "Plot: %s (%s)." % (plot_info[0], ", ".join("%s: %d at %.2fx" % (label, n, x)
+                                                                  for label, x, n in plot_info[1]))]
     lines += ["", "Targets of issue 14:", ""] + targets(results, size_results, memory)
     lines += ["", "Total %.0f s." % (time.monotonic() - t0)]
     text = "\n".join(lines) + "\n"
     print("\n" + text)
-    name = "report_%s.md" % (a.set if not a.models else "models")
+    name = "report_%s%s%s.md" % (a.set if not a.models else "models", "_sizes" if sizes else "",
+                                 "_memory" if memory else "")
     with open(os.path.join(a.out, name), "w") as f:
         f.write(text)
     with open(os.path.join(a.out, name[:-3] + ".json"), "w") as f:
