@@ -499,8 +499,8 @@ def targets(results, sizes=None, memory=None):
         add("time", name, "%.2fx cpu (%.2fx wall)" % (res["ratio_cpu"], res["ratio_wall"]), "<= 3x peer",
             res["ratio_cpu"] <= 3.0)
         if len(o["cpu_runs"]) >= 2:
-            add("deterministic", name, "%d distinct output(s) in %d runs" % (len(res["ours_hashes"]),
-                                                                             len(o["cpu_runs"])),
+            add("deterministic", name, "%d distinct output(s) in %d runs (peer: %s)" % (
+                len(res["ours_hashes"]), len(o["cpu_runs"]), "same file" if res["peer_deterministic"] else "differs"),
                 "1", len(res["ours_hashes"]) == 1)
         else:
             rows.append("| deterministic | %s | one run only | 1 | not checked |" % name)
