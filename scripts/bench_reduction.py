@@ -715,7 +715,8 @@ def cmd_bench(a):
     if plot_info:
         lines += ["", "Plot: %s (%s)." % (plot_info[0], ", ".join("%s: %d at %.2fx" % (label, n, x)
                                                                   for label, x, n in plot_info[1]))]
-    lines += ["", "Targets of issue 14:", ""] + targets(results, size_results, memory)
+    target_rows = targets(results, size_results, memory)
+    lines += ["", "Targets of issue 14:", ""] + target_rows
     lines += ["", "Total %.0f s." % (time.monotonic() - t0)]
     text = "\n".join(lines) + "\n"
     print("\n" + text)
@@ -726,6 +727,9 @@ def cmd_bench(a):
     with open(os.path.join(a.out, name[:-3] + ".json"), "w") as f:
         json.dump({"results": results, "memory": memory}, f, indent=1, default=str)
     print("wrote", os.path.join(a.out, name))
+    failed = sum(row.endswith("| FAIL |") for row in target_rows)
+    if a.strict and failed:
+        sys.exit("%d target row(s) failed" % failed)
 
 
 def main(argv=None):
@@ -744,6 +748,7 @@ def main(argv=None):
     b.add_argument("--vertices", type=int, default=20000)
     b.add_argument("--sizes", help="bunny00 at these vertex counts too, e.g. 5000,20000,80000")
     b.add_argument("--runs", type=int, default=3)
+    b.add_argument("--strict", action="store_true", help="exit 1 when a target row fails (default: always 0)")
     b.add_argument("--plot", action="store_true", help="the reduction settings' plot (bunny00 at 20K)")
     b.add_argument("--memory", action="store_true", help="peak memory on a ~1.2M-face input")
     b.add_argument("--memory-timelimit", type=float, default=0.0,
