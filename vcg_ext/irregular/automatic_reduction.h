@@ -116,7 +116,7 @@ class AutomaticReduction {
   ReductionReport Run() {
     ReductionReport rep;
     t0_ = std::chrono::steady_clock::now();
-    const auto start = ed_.Mark();
+    TakeSnapshot();
     Histogram(rep.histogramBefore, rep.irregularBefore);
     for (int attempt = 0;; ++attempt) {
       ReductionReport r;
@@ -125,7 +125,7 @@ class AutomaticReduction {
       r.budgetRetries = attempt;
       Edit(r);
       if (r.interrupted) {
-        ed_.RollbackTo(start);
+        RestoreSnapshot();
         r.result = Result::Fail("interrupted: the mesh is unchanged");
         return r;
       }
@@ -137,7 +137,7 @@ class AutomaticReduction {
         rep = r;
         if (!within) {
           // even the tightest retry overshoots: give the input back unchanged
-          ed_.RollbackTo(start);
+          RestoreSnapshot();
           rep.allUndone = true;
           rep.hausdorffPercent = HausdorffPercent(m_, original_);
         }
@@ -147,7 +147,8 @@ class AutomaticReduction {
       // over (not only on sharp edges), and the per-edit budget lowered in proportion to the
       // overshoot (gently: where the input is curved, the mesh before the edits may already
       // use most of the budget, and a much lower one would forbid every edit there).
-      ed_.RollbackTo(start);
+      RestoreSnapshot();
+      TakeSnapshot();
       budget_ *= std::max(0.5, std::min(0.95, kVerifyMargin * opt_.hausdorffBudgetPercent / r.hausdorffPercent));
       if (samplesPerEdge_ < 2) BuildInputSamples(samplesPerEdge_ = 2);
       epoch_ = 0;
@@ -156,6 +157,7 @@ class AutomaticReduction {
       globalKept_ = sweepsKept_ = true;
     }
     ed_.Commit();
+    snapshot_.Commit();
     vcg::tri::Allocator<MeshType>::CompactEveryVector(m_);
     vcg::tri::UpdateTopology<MeshType>::FaceFace(m_);
     vcg::tri::UpdateTopology<MeshType>::VertexFace(m_);
@@ -173,16 +175,17 @@ class AutomaticReduction {
 
   /// One pass of the whole pipeline (type change, sweeps, final relaxation) into rep.
   void Edit(ReductionReport& rep) {
+    StartCount();
     bool go = Stage(rep, 0, "Splitting high and low valences") && ReduceTypes(rep);
     // Growing travel: cheap local cancellations everywhere first, so the long transports only
     // run for what is left.
     // Sweeps: local removals only until they stop paying, then with transports, until a
     // sweep removes nothing (or a small share) more.
     for (int sweep = 0, travel = 0; go && sweep < opt_.maxSweeps; ++sweep) {
-      const int before = CountIrregular();
+      const int before = irregular_;
       go = Stage(rep, 10 + 70 * sweep / opt_.maxSweeps, "Cancelling triples and quadruples") && Sweep(rep, travel);
       if (!go || Done()) break;
-      const int removed = before - CountIrregular();
+      const int removed = before - irregular_;
       if (removed * 100 <= before * opt_.minSweepGainPercent) {
         if (travel > 0) break;
         travel = opt_.maxTravel;
@@ -281,14 +284,46 @@ class AutomaticReduction {
     return true;
   }
 
-  bool Done() { return opt_.targetCount > 0 && CountIrregular() <= opt_.targetCount; }
+  bool Done() const { return opt_.targetCount > 0 && irregular_ <= opt_.targetCount; }
 
-  /// Interior irregular vertices, from one O(F) pass.
-  int CountIrregular() {
-    ValenceField<MeshType> vf = ComputeValences(m_);
-    int n = 0;
-    for (size_t i = 0; i < m_.vert.size(); ++i) n += !vf.boundary[i] && vf.IsIrregular(i);
-    return n;
+  /// The running count of interior irregular vertices: one O(V) pass per run, then kept up
+  /// to date from the vertices each accepted edit touched (UpdateCount).
+  void StartCount() {
+    isIrregular_.assign(m_.vert.size(), 0);
+    irregular_ = 0;
+    for (size_t i = 0; i < m_.vert.size(); ++i) irregular_ += isIrregular_[i] = IsInteriorIrregular(int(i));
+  }
+
+  /// After an accepted edit: valences change only at the vertices an edit touched and their
+  /// neighbours (a collapse re-points the faces around the vertex it removes, all in the ring
+  /// of the survivor). O(touched).
+  void UpdateCount(const std::vector<int>& touched) {
+    std::vector<int> live;
+    for (int t : touched)
+      if (ed_.IsLive(t)) live.push_back(t);
+    std::vector<int> around = KRing(m_, live, 1);
+    around.insert(around.end(), touched.begin(), touched.end());
+    if (isIrregular_.size() < m_.vert.size()) isIrregular_.resize(m_.vert.size(), 0);
+    for (int x : around) {
+      if (x < 0 || size_t(x) >= isIrregular_.size()) continue;
+      const char now = IsInteriorIrregular(x);
+      irregular_ += int(now) - int(isIrregular_[size_t(x)]);
+      isIrregular_[size_t(x)] = now;
+    }
+  }
+
+  /// The whole-run undo (interruption, Hausdorff overshoot): every vertex and face of the
+  /// input saved once, O(V + F) memory whatever the number of edits, while the editor's own
+  /// journal is committed after every accepted edit and so holds one edit at a time.
+  void TakeSnapshot() {
+    snapshot_.Commit();
+    snapshotMark_ = snapshot_.Mark();
+    for (auto& f : m_.face) snapshot_.SaveFace(&f);
+    for (auto& v : m_.vert) snapshot_.SaveVertex(&v);
+  }
+  void RestoreSnapshot() {
+    ed_.Commit();  // what an interrupted edit logged is overwritten below
+    snapshot_.RollbackTo(snapshotMark_);
   }
 
   void Histogram(std::map<int, int>& h, int& irregular) {
@@ -563,16 +598,17 @@ class AutomaticReduction {
     return true;
   }
 
-  /// The vertices an atomic operation changed and that still exist.
-  static std::vector<int> Changed(const AtomicOutcome& o) {
+  /// The vertices an atomic operation changed and that still exist. The ones it deleted go
+  /// to removed_, for the running count.
+  std::vector<int> Changed(const AtomicOutcome& o) {
     std::vector<int> c;
     for (auto& kv : o.changes)
-      if (kv.second != 0) c.push_back(kv.first);
+      (kv.second != 0 ? c : removed_).push_back(kv.first);
     return c;
   }
 
   /// Appends what o changed to touched; returns it too.
-  static std::vector<int> Record(const AtomicOutcome& o, std::vector<int>& touched) {
+  std::vector<int> Record(const AtomicOutcome& o, std::vector<int>& touched) {
     std::vector<int> c = Changed(o);
     touched.insert(touched.end(), c.begin(), c.end());
     return c;
@@ -614,20 +650,48 @@ class AutomaticReduction {
   }
 
   /// The pair step (one of the six of sec. 6.2) after which the pair's midpoint is closest to
-  /// `goal`, if it gets closer; refused steps (blocked, folds, frozen) are skipped.
+  /// `goal`, if it gets closer; refused steps (blocked, folds, frozen) are skipped; ties go
+  /// to the lowest direction. The dry runs (PredictMovePair57) rule out blocked and frozen
+  /// steps and bound each step's distance from below without editing: a flip moves no
+  /// vertex, a collapse leaves its survivor at one of three known places (graph_ops.h
+  /// Collapse); only a split's new positions need the step applied. A step is applied (and
+  /// rolled back) only if its bound can still beat the best so far, so the choice is the
+  /// one trying all six would make, at usually two or three applications instead of seven.
   AtomicOutcome StepCloser(int v5, int v7, CoordType goal) {
     auto mid = [&](int a, int b) { return (ed_.V(a)->P() + ed_.V(b)->P()) / 2; };
-    double best = double((mid(v5, v7) - goal).Norm());
+    auto dist = [&](const CoordType& p) { return double((p - goal).Norm()); };
+    double best = dist(mid(v5, v7));
     int bestDir = -1;
+    struct Bound {
+      double d;
+      int dir;
+      bool operator<(const Bound& o) const { return d < o.d || (d == o.d && dir < o.dir); }
+    };
+    std::vector<Bound> bounds;
     for (int dir = 0; dir < 6; ++dir) {
+      AtomicPrediction pr = ops_.PredictMovePair57(v5, v7, dir);
+      bool ok = bool(pr);
+      for (auto& kv : pr.changes) ok = ok && !Frozen(kv.first);
+      if (!ok) continue;
+      double lb = 0;  // a split moves the pair: apply it to know
+      if (pr.steps.size() == 1 && pr.steps[0].kind == GraphStep::kFlip) {
+        lb = dist(mid(pr.pair5, pr.pair7));
+      } else if (pr.steps.size() == 1 && pr.steps[0].kind == GraphStep::kCollapse) {
+        // collapse x into the survivor (pair7): it ends at the midpoint, or its own or x's place
+        const CoordType px = ed_.V(pr.steps[0].x)->P(), ps = ed_.V(pr.steps[0].y)->P(), p5 = ed_.V(pr.pair5)->P();
+        lb = std::min({dist((p5 + (px + ps) / 2) / 2), dist((p5 + ps) / 2), dist((p5 + px) / 2)});
+      }
+      // a margin for rounding: the bound must never exceed the distance after the real step
+      bounds.push_back({lb * (1 - 1e-9) - 1e-12, dir});
+    }
+    std::sort(bounds.begin(), bounds.end());
+    for (const Bound& b : bounds) {
+      if (b.d > best || (bestDir >= 0 && b.d == best && b.dir > bestDir)) break;
       auto cp = ed_.Mark();
-      AtomicOutcome o = ops_.MovePair57(v5, v7, dir);
-      bool ok = bool(o);
-      if (ok)
-        for (auto& kv : o.changes) ok = ok && !Frozen(kv.first);
-      if (ok) {
-        const double d = double((mid(o.irregular[0], o.irregular[1]) - goal).Norm());
-        if (d < best) best = d, bestDir = dir;
+      AtomicOutcome o = ops_.MovePair57(v5, v7, b.dir);
+      if (o) {
+        const double d = dist(mid(o.irregular[0], o.irregular[1]));
+        if (d < best || (d == best && bestDir >= 0 && b.dir < bestDir)) best = d, bestDir = b.dir;
       }
       ed_.RollbackTo(cp);
     }
@@ -810,7 +874,14 @@ class AutomaticReduction {
     typename Editor::Checkpoint cp;
     double angleBefore;
     Guard(AutomaticReduction& ar, const std::vector<int>& around)
-        : r(ar), cp(ar.ed_.Mark()), angleBefore(ar.MinAngleAround(around)) {}
+        : r(ar), cp(ar.ed_.Mark()), angleBefore(ar.MinAngleAround(around)) {
+      ++r.guardDepth_;
+    }
+    ~Guard() {
+      if (--r.guardDepth_ == 0) r.removed_.clear();
+    }
+    Guard(const Guard&) = delete;
+    Guard& operator=(const Guard&) = delete;
     bool Accept(const std::vector<int>& touched) {
       // A protected vertex next to a changed one would see one of its faces change (a
       // collapse or split re-points the faces around the vertex it removes or splits).
@@ -831,6 +902,12 @@ class AutomaticReduction {
       }
       ++r.epoch_;
       for (int t : touched) Stamp(r.editedAt_, t, r.epoch_);
+      if (r.guardDepth_ == 1) {
+        // outermost edit kept: count it and forget its undo log (memory O(one edit))
+        r.UpdateCount(touched);
+        r.UpdateCount(r.removed_);
+        r.ed_.Commit();
+      }
       return true;
     }
     void Undo() { r.ed_.RollbackTo(cp); }
@@ -844,9 +921,6 @@ class AutomaticReduction {
     std::vector<int> all;
     for (size_t i = 0; i < m_.vert.size(); ++i)
       if (ed_.IsLive(int(i)) && !Frozen(int(i))) all.push_back(int(i));
-    for (int v : all) ed_.journal().SaveVertex(ed_.V(v));
-    for (auto& f : m_.face)
-      if (!f.IsD()) ed_.journal().SaveFace(&f);
     if (opt_.finalRelax == RelaxMode::Global) {
       const double before = MeasureShape(m_).minAngleDeg;
       std::vector<CoordType> saved;
@@ -893,6 +967,12 @@ class AutomaticReduction {
   std::vector<int> exclude_;  ///< Reduces(): irregular vertices a removal must not involve
   int maxSurvivors_ = 1 << 20;  ///< Reduces(): most irregular vertices a removal may leave
   std::chrono::steady_clock::time_point t0_;
+  EditJournal<MeshType> snapshot_{m_};  ///< the input, for the whole-run undo (TakeSnapshot)
+  typename EditJournal<MeshType>::Checkpoint snapshotMark_;
+  int guardDepth_ = 0;                  ///< Guards alive (nested edits); the outermost commits
+  std::vector<char> isIrregular_;       ///< per vertex: counted in irregular_
+  int irregular_ = 0;                   ///< interior irregular vertices now (running count)
+  std::vector<int> removed_;            ///< vertices deleted by the edits of the current Guard
 };
 
 }  // namespace irregular
