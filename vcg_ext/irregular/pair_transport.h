@@ -136,6 +136,56 @@ class PairTransport {
     return false;
   }
 
+  /// The pair step (one of the six of sec. 6.2) after which the pair's midpoint is closest to
+  /// `goal`, if it gets closer; refused steps (blocked, folds, frozen) are skipped; ties go
+  /// to the lowest direction. The dry runs (PredictMovePair57) rule out blocked and frozen
+  /// steps and bound each step's distance from below without editing: a flip moves no
+  /// vertex, a collapse leaves its survivor at one of three known places (graph_ops.h
+  /// Collapse); only a split's new positions need the step applied. A step is applied (and
+  /// rolled back) only if its bound can still beat the best so far, so the choice is the
+  /// one trying all six would make, at usually two or three applications instead of seven.
+  AtomicOutcome StepCloser(int v5, int v7, CoordType goal) {
+    auto mid = [&](int a, int b) { return (ed_.V(a)->P() + ed_.V(b)->P()) / 2; };
+    auto dist = [&](const CoordType& p) { return double((p - goal).Norm()); };
+    double best = dist(mid(v5, v7));
+    int bestDir = -1;
+    struct Bound {
+      double d;
+      int dir;
+      bool operator<(const Bound& o) const { return d < o.d || (d == o.d && dir < o.dir); }
+    };
+    std::vector<Bound> bounds;
+    for (int dir = 0; dir < 6; ++dir) {
+      AtomicPrediction pr = ops_.PredictMovePair57(v5, v7, dir);
+      bool ok = bool(pr);
+      for (auto& kv : pr.changes) ok = ok && !state_.Frozen(kv.first);
+      if (!ok) continue;
+      double lb = 0;  // a split moves the pair: apply it to know
+      if (pr.steps.size() == 1 && pr.steps[0].kind == GraphStep::kFlip) {
+        lb = dist(mid(pr.pair5, pr.pair7));
+      } else if (pr.steps.size() == 1 && pr.steps[0].kind == GraphStep::kCollapse) {
+        // collapse x into the survivor (pair7): it ends at the midpoint, or its own or x's place
+        const CoordType px = ed_.V(pr.steps[0].x)->P(), ps = ed_.V(pr.steps[0].y)->P(), p5 = ed_.V(pr.pair5)->P();
+        lb = std::min({dist((p5 + (px + ps) / 2) / 2), dist((p5 + ps) / 2), dist((p5 + px) / 2)});
+      }
+      // a margin for rounding: the bound must never exceed the distance after the real step
+      bounds.push_back({lb * (1 - 1e-9) - 1e-12, dir});
+    }
+    std::sort(bounds.begin(), bounds.end());
+    for (const Bound& b : bounds) {
+      if (b.d > best || (bestDir >= 0 && b.d == best && b.dir > bestDir)) break;
+      auto cp = ed_.Mark();
+      AtomicOutcome o = ops_.MovePair57(v5, v7, b.dir);
+      if (o) {
+        const double d = dist(mid(o.irregular[0], o.irregular[1]));
+        if (d < best || (d == best && bestDir >= 0 && b.dir < bestDir)) best = d, bestDir = b.dir;
+      }
+      ed_.RollbackTo(cp);
+    }
+    if (bestDir < 0) return AtomicOutcome();
+    return ops_.MovePair57(v5, v7, bestDir);
+  }
+
  private:
   /// Moves the pair with `step` until a removal applies next to it, and keeps the result if
   /// it is good enough (the guard). A failed transport is the common case and the expensive
@@ -209,56 +259,6 @@ class PairTransport {
       ed_.RollbackTo(cp);
     }
     return false;
-  }
-
-  /// The pair step (one of the six of sec. 6.2) after which the pair's midpoint is closest to
-  /// `goal`, if it gets closer; refused steps (blocked, folds, frozen) are skipped; ties go
-  /// to the lowest direction. The dry runs (PredictMovePair57) rule out blocked and frozen
-  /// steps and bound each step's distance from below without editing: a flip moves no
-  /// vertex, a collapse leaves its survivor at one of three known places (graph_ops.h
-  /// Collapse); only a split's new positions need the step applied. A step is applied (and
-  /// rolled back) only if its bound can still beat the best so far, so the choice is the
-  /// one trying all six would make, at usually two or three applications instead of seven.
-  AtomicOutcome StepCloser(int v5, int v7, CoordType goal) {
-    auto mid = [&](int a, int b) { return (ed_.V(a)->P() + ed_.V(b)->P()) / 2; };
-    auto dist = [&](const CoordType& p) { return double((p - goal).Norm()); };
-    double best = dist(mid(v5, v7));
-    int bestDir = -1;
-    struct Bound {
-      double d;
-      int dir;
-      bool operator<(const Bound& o) const { return d < o.d || (d == o.d && dir < o.dir); }
-    };
-    std::vector<Bound> bounds;
-    for (int dir = 0; dir < 6; ++dir) {
-      AtomicPrediction pr = ops_.PredictMovePair57(v5, v7, dir);
-      bool ok = bool(pr);
-      for (auto& kv : pr.changes) ok = ok && !state_.Frozen(kv.first);
-      if (!ok) continue;
-      double lb = 0;  // a split moves the pair: apply it to know
-      if (pr.steps.size() == 1 && pr.steps[0].kind == GraphStep::kFlip) {
-        lb = dist(mid(pr.pair5, pr.pair7));
-      } else if (pr.steps.size() == 1 && pr.steps[0].kind == GraphStep::kCollapse) {
-        // collapse x into the survivor (pair7): it ends at the midpoint, or its own or x's place
-        const CoordType px = ed_.V(pr.steps[0].x)->P(), ps = ed_.V(pr.steps[0].y)->P(), p5 = ed_.V(pr.pair5)->P();
-        lb = std::min({dist((p5 + (px + ps) / 2) / 2), dist((p5 + ps) / 2), dist((p5 + px) / 2)});
-      }
-      // a margin for rounding: the bound must never exceed the distance after the real step
-      bounds.push_back({lb * (1 - 1e-9) - 1e-12, dir});
-    }
-    std::sort(bounds.begin(), bounds.end());
-    for (const Bound& b : bounds) {
-      if (b.d > best || (bestDir >= 0 && b.d == best && b.dir > bestDir)) break;
-      auto cp = ed_.Mark();
-      AtomicOutcome o = ops_.MovePair57(v5, v7, b.dir);
-      if (o) {
-        const double d = dist(mid(o.irregular[0], o.irregular[1]));
-        if (d < best || (d == best && bestDir >= 0 && b.dir < bestDir)) best = d, bestDir = b.dir;
-      }
-      ed_.RollbackTo(cp);
-    }
-    if (bestDir < 0) return AtomicOutcome();
-    return ops_.MovePair57(v5, v7, bestDir);
   }
 
   /// Irregular vertices (not in `from`) within `radius` edges of `from`, nearest first.
