@@ -171,17 +171,34 @@ class EditGuard {
     auto cellOf = [&](float x) { return int64_t(std::floor(x / cellSize)); };
     std::unordered_map<uint64_t, std::vector<int>> faceCells;
     std::vector<vcg::Triangle3<float>> tri;
+    std::vector<vcg::Box3<float>> boxes;
+    tri.reserve(all.size());
+    boxes.reserve(all.size());
     for (size_t k = 0; k < all.size(); ++k) {
       const FaceType* f = all[k];
       tri.emplace_back(vcg::Point3f::Construct(f->cP(0)), vcg::Point3f::Construct(f->cP(1)),
                        vcg::Point3f::Construct(f->cP(2)));
       vcg::Box3<float> b;
       for (int z = 0; z < 3; ++z) b.Add(tri.back().P(z));
+      boxes.push_back(b);
       for (int64_t x = cellOf(b.min[0]); x <= cellOf(b.max[0]); ++x)
         for (int64_t y = cellOf(b.min[1]); y <= cellOf(b.max[1]); ++y)
           for (int64_t z = cellOf(b.min[2]); z <= cellOf(b.max[2]); ++z) faceCells[key(x, y, z)].push_back(int(k));
     }
     std::unordered_set<int> probed;
+    // A face spans several cells: measured once per sample (lastSample); and not at all when
+    // its box is already farther than the closest face so far (the distance to a triangle is
+    // at least the distance to its box; the margin covers rounding), which cannot change the
+    // closest face found.
+    std::vector<int> lastSample(all.size(), -1);
+    auto boxDistance = [&](const vcg::Box3<float>& b, const vcg::Point3f& p) {
+      float d2 = 0;
+      for (int a = 0; a < 3; ++a) {
+        const float e = std::max({b.min[a] - p[a], 0.f, p[a] - b.max[a]});
+        d2 += e * e;
+      }
+      return std::sqrt(d2);
+    };
     for (size_t k = 0; k < changed.size(); ++k) {
       vcg::Box3<float> b;
       for (int z = 0; z < 3; ++z) b.Add(tri[k].P(z));
@@ -200,6 +217,9 @@ class EditGuard {
               auto it = faceCells.find(key(x, y, z));
               if (it == faceCells.end()) continue;
               for (int t : it->second) {
+                if (lastSample[size_t(t)] == i) continue;
+                lastSample[size_t(t)] = i;
+                if (boxDistance(boxes[size_t(t)], p) > best * (1 + 1e-4f)) continue;
                 float d;
                 vcg::Point3f q;
                 vcg::TrianglePointDistance(tri[size_t(t)], p, d, q);
