@@ -60,7 +60,10 @@ struct ReductionReport {
   int glides = 0;             ///< pairs that glided straight on into a cancellation
   int pairSteps = 0;          ///< pair steps of those transports
   int splitAbsorptions = 0;   ///< stretched dislocations split into two pairs that were both cancelled
-  int undone = 0;             ///< edits undone (angle, Hausdorff or fold)
+  int undone = 0;             ///< edits undone (angle, Hausdorff or fold), not counting those inside a
+                              ///< split-and-absorb that was undone as a whole
+  // The guard's refusals by reason count every refusal, those inside an undone
+  // split-and-absorb included (so their sum can exceed `undone`):
   int undoneAngle = 0;        ///< edits the guard undid for a triangle under the angle bound
   int undoneHausdorff = 0;    ///< ... for leaving the input surface by more than the budget
   int undoneFrozen = 0;       ///< ... for touching the protected region
