@@ -3,8 +3,13 @@
 // IsotropicRemeshing, the code behind MeshLab's "Isotropic Explicit Remeshing"), then reduced
 // with the default options. Prints one row per model.
 //   usage: bench_reduction [vertices=20000] [option=value ...] [model.off ...]
+// vertices 0: reduce the model as loaded (no remeshing). A model is a corpus name or a path
+// (containing '/').
 // options (ReductionOptions fields): maxTravel, glideTravel, targetsPerPair, maxSweeps,
 // localRelaxIterations, minAngle, budget (Hausdorff, percent of the diagonal).
+// files: saveRemeshed=<path> writes the remeshed input (OFF), saveResult=<path> the result, for
+// profiling the reduction alone on a fixed input and for comparing two runs byte by byte (with
+// several models, the model's name is appended).
 // The end-to-end comparison with MeshLab's remeshing through meshlabserver is
 // scripts/bench_reduction.py; this executable isolates the algorithm's own time.
 #include <chrono>
@@ -14,6 +19,8 @@
 #include <vector>
 
 #include <vcg/complex/algorithms/stat.h>
+#include <wrap/io_trimesh/export_off.h>
+#include <wrap/io_trimesh/import_off.h>
 
 #include <vcg_ext/irregular/automatic_reduction.h>
 #include <vcg_ext/irregular/quality.h>
@@ -24,10 +31,28 @@
 using namespace vcg_ext::irregular;
 using test::TMesh;
 
+namespace {
+bool LoadPath(TMesh& m, const std::string& file) {
+  int mask = 0;
+  if (vcg::tri::io::ImporterOFF<TMesh>::Open(m, file.c_str(), mask) != 0) return false;
+  vcg::tri::Clean<TMesh>::RemoveUnreferencedVertex(m);
+  vcg::tri::Allocator<TMesh>::CompactEveryVector(m);
+  test::UpdateTopology(m);
+  return true;
+}
+
+void Save(TMesh& m, const std::string& file, const std::string& model, size_t models) {
+  std::string out = file;
+  if (models > 1) out += "." + model.substr(model.find_last_of('/') + 1);
+  vcg::tri::io::ExporterOFF<TMesh>::Save(m, out.c_str());
+}
+}  // namespace
+
 int main(int argc, char** argv) {
   const int n = argc > 1 ? std::atoi(argv[1]) : 20000;
   std::vector<std::string> models;
   ReductionOptions opt;
+  std::string saveRemeshed, saveResult;
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
     const size_t eq = a.find('=');
@@ -36,6 +61,10 @@ int main(int argc, char** argv) {
       continue;
     }
     const std::string key = a.substr(0, eq);
+    if (key == "saveRemeshed" || key == "saveResult") {
+      (key == "saveRemeshed" ? saveRemeshed : saveResult) = a.substr(eq + 1);
+      continue;
+    }
     const double v = std::atof(a.c_str() + eq + 1);
     if (key == "maxTravel") opt.maxTravel = int(v);
     else if (key == "glideTravel") opt.glideTravel = int(v);
@@ -55,7 +84,8 @@ int main(int argc, char** argv) {
               "H%diag", "minang", "<30deg%", "remesh_s", "reduce_s", "retries");
   for (const std::string& name : models) {
     TMesh m;
-    if (!test::LoadCorpus(m, name)) {
+    const bool path = name.find('/') != std::string::npos;
+    if (!(path ? LoadPath(m, name) : test::LoadCorpus(m, name))) {
       std::printf("%-14s missing\n", name.c_str());
       continue;
     }
@@ -63,7 +93,8 @@ int main(int argc, char** argv) {
     auto t0 = std::chrono::steady_clock::now();
     RemeshOptions ro;
     ro.targetEdgeLength = EdgeLengthForVertexCount(vcg::tri::Stat<TMesh>::ComputeMeshArea(m), n);
-    RemeshIsotropic(m, ro);
+    if (n > 0) RemeshIsotropic(m, ro);
+    if (!saveRemeshed.empty()) Save(m, saveRemeshed, name, models.size());
     auto t1 = std::chrono::steady_clock::now();
     AutomaticReduction<TMesh> ar(m, input, opt);
     ReductionReport r = ar.Run();
@@ -72,6 +103,7 @@ int main(int argc, char** argv) {
       std::printf("%-14s refused: %s\n", name.c_str(), r.result.reason.c_str());
       continue;
     }
+    if (!saveResult.empty()) Save(m, saveResult, name, models.size());
     ShapeMeasures s = MeasureShape(m);
     std::printf("%-14s %7d %6d %8d %6d %7.2f %8.3f %7.1f %8.2f %8.2f %8.2f %5d%s\n", name.c_str(), m.vn,
                 Summarize(m).eulerCharacteristic, r.irregularBefore, r.irregularAfter, 100.0 * r.irregularAfter / m.vn,

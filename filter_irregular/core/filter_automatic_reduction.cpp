@@ -148,6 +148,9 @@ FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par
            "%d stretched 5-7 pairs split and cancelled, %d edits undone (angle or Hausdorff limit)",
            rep.typeSplits, rep.localCancellations, rep.transports, rep.glides, rep.pairSteps, rep.splitAbsorptions,
            rep.undone);
+  ctx.Logf("Undone by the edit guard: %d for a triangle under the minimum angle, %d for leaving the Hausdorff budget, "
+           "%d for touching the protected selection; %d vertices had an edit undone",
+           rep.undoneAngle, rep.undoneHausdorff, rep.undoneFrozen, int(rep.undoneAt.size()));
   if (rep.timeLimitReached) ctx.Warnf("Time limit reached: editing stopped early");
   if (rep.globalRelaxUndone) ctx.Logf("The final global relaxation lowered the smallest angle and was undone");
   if (rep.finalSweepsUndone) ctx.Logf("The final local relaxation sweeps overshot the Hausdorff budget and were undone");
@@ -188,6 +191,9 @@ FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par
   out.SetInt("pair_steps", rep.pairSteps);
   out.SetInt("split_absorptions", rep.splitAbsorptions);
   out.SetInt("undone", rep.undone);
+  out.SetInt("undone_angle", rep.undoneAngle);
+  out.SetInt("undone_hausdorff", rep.undoneHausdorff);
+  out.SetInt("undone_frozen", rep.undoneFrozen);
   out.SetInt("budget_retries", rep.budgetRetries);
   out.SetFloat("hausdorff_percent", rep.hausdorffPercent);
   out.SetFloat("min_angle_after", shape.minAngleDeg);

@@ -173,6 +173,8 @@ def test_deterministic_and_every_parameter_has_its_effect():
     _, strict, _, _ = run(minangle=45)
     assert strict["min_angle_after"] >= min(45, input_min) - 1e-9
     assert strict["irregular_after"] > a["irregular_after"] and strict["undone"] > a["undone"]
+    # the guard's refusals by reason: a stricter angle bound refuses more for the angle
+    assert strict["undone_angle"] > a["undone_angle"] and a["undone_frozen"] == 0
     _, loose, _, _ = run(minangle=0)
     assert loose["min_angle_after"] < input_min
     _, glob, _, _ = run(relaxation="Global")
@@ -181,6 +183,7 @@ def test_deterministic_and_every_parameter_has_its_effect():
     assert timed["stop_reason"] == 2 and timed["irregular_after"] > a["irregular_after"]
     _, tight, _, _ = run(hausdorffbudget=0.1)
     assert tight["irregular_after"] > a["irregular_after"]
+    assert tight["undone_hausdorff"] > a["undone_hausdorff"]
 
 
 def test_zero_budget_gives_the_input_back():

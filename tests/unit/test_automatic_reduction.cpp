@@ -1,4 +1,4 @@
-// Unit tests of vcg_ext/irregular/automatic_reduction.h: exact outcomes on constructed meshes,
+// Unit tests of vcg_ext/irregular/automatic_reduction.h and its parts: exact outcomes on constructed meshes,
 // invariants, fidelity, determinism, protection and interruption on a real corpus mesh.
 #include <gtest/gtest.h>
 
@@ -221,4 +221,193 @@ TEST(AutomaticReduction, TimeLimitStopsEditingButKeepsAValidMesh) {
   ASSERT_TRUE(r) << r.result.reason;
   EXPECT_TRUE(r.timeLimitReached);
   EXPECT_TRUE(CheckInvariants(m).ok);
+}
+
+TEST(AutomaticReduction, TargetCountStopsOnTheRunningCount) {
+  TMesh m;
+  std::unique_ptr<SurfaceProjector> input;
+  ASSERT_TRUE(RemeshedCorpus(m, "bunny00.off", 3000, &input)) << "corpus mesh missing" << " (run scripts/setup.sh)";
+  const int before = Irregular(m);
+  ReductionOptions opt;
+  opt.targetCount = before / 2;
+  AutomaticReduction<TMesh> ar(m, *input, opt);
+  ReductionReport r = ar.Run();
+  ASSERT_TRUE(r) << r.result.reason;
+  EXPECT_EQ(Irregular(m), r.irregularAfter);
+  EXPECT_LE(r.irregularAfter, opt.targetCount);
+  // the target is checked every 256 vertices of a sweep: the run stops soon after reaching it
+  EXPECT_GT(r.irregularAfter, opt.targetCount / 2);
+  EXPECT_TRUE(CheckInvariants(m).ok);
+}
+
+TEST(AutomaticReduction, ReportsTheEditsTheGuardUndidByVertexOfTheResult) {
+  TMesh m;
+  std::unique_ptr<SurfaceProjector> input;
+  ASSERT_TRUE(RemeshedCorpus(m, "bunny00.off", 3000, &input)) << "corpus mesh missing" << " (run scripts/setup.sh)";
+  ReductionOptions opt;
+  opt.minAngleDeg = 40;  // strict: many edits are refused for their angles
+  AutomaticReduction<TMesh> ar(m, *input, opt);
+  ReductionReport r = ar.Run();
+  ASSERT_TRUE(r) << r.result.reason;
+  EXPECT_GT(r.undoneAngle, 0);
+  EXPECT_EQ(r.undoneFrozen, 0);
+  ASSERT_FALSE(r.undoneAt.empty());
+  int total = 0;
+  for (auto& kv : r.undoneAt) {
+    ASSERT_GE(kv.first, 0);
+    ASSERT_LT(size_t(kv.first), m.vert.size());  // an index of the returned (compacted) mesh
+    ASSERT_FALSE(m.vert[size_t(kv.first)].IsD());
+    EXPECT_GT(kv.second, 0);
+    total += kv.second;
+  }
+  EXPECT_GE(total, int(r.undoneAt.size()));
+}
+
+// ---------------------------------------------------------------- the parts (reduction_state.h,
+// edit_guard.h, local_cancellation.h, pair_transport.h): the running count and the journal after
+// every edit, the dry-run-driven choice of a pair step against trying all six, the guard's undo
+// record, the whole-run snapshot.
+namespace {
+/// The parts wired as the driver wires them.
+struct Parts {
+  MeshEditor<TMesh> ed;
+  CompositeOperations<TMesh> comp;
+  ReductionState<TMesh> state;
+  EditGuard<TMesh> guard;
+  LocalCancellation<TMesh> cancel;
+  PairTransport<TMesh> transport;
+  Parts(TMesh& m, const SurfaceProjector& in, const ReductionOptions& opt)
+      : ed(m),
+        comp(ed, &in),
+        state(m, ed, opt),
+        guard(m, in, opt, ed, state),
+        cancel(m, ed, comp, guard, state),
+        transport(m, opt, ed, comp.atomic(), guard, state, cancel) {}
+};
+
+int Recount(TMesh& m) {
+  MeshEditor<TMesh> ed(m);
+  int n = 0;
+  for (size_t i = 0; i < m.vert.size(); ++i)
+    n += ed.IsLive(int(i)) && !ed.IsBoundary(int(i)) && ed.Valence(int(i)) != 6;
+  return n;
+}
+}  // namespace
+
+TEST(ReductionParts, RunningCountAndJournalAreExactAfterEveryEditAndTheSnapshotUndoesAll) {
+  TMesh m;
+  std::unique_ptr<SurfaceProjector> input;
+  ASSERT_TRUE(RemeshedCorpus(m, "bunny00.off", 3000, &input)) << "corpus mesh missing (run scripts/setup.sh)";
+  const test::MeshSnapshot before = test::Snapshot(m);
+  ReductionOptions opt;
+  Parts p(m, *input, opt);
+  p.state.TakeSnapshot();
+  p.state.StartCount();
+  ASSERT_EQ(p.state.Irregular(), Recount(m));
+  ReductionReport rep;
+  p.cancel.ReduceTypes(rep);
+  EXPECT_EQ(p.state.Irregular(), Recount(m));
+  int edits = 0;
+  for (int travel : {0, 12}) {
+    for (size_t i = 0; i < m.vert.size(); ++i) {
+      const int v = int(i);
+      if (!p.state.IsInteriorIrregular(v)) continue;
+      bool edited = p.cancel.CancelAround(rep, v);
+      if (!edited && travel > 0 && p.ed.Valence(v) == 5) edited = p.transport.Transport(rep, v, travel);
+      if (!edited && travel > 0 && p.transport.Isolated(v)) edited = p.transport.SplitAndAbsorb(rep, v, travel);
+      edits += edited;
+      // the count follows every kept edit; the editor's journal holds nothing between edits
+      ASSERT_EQ(p.state.Irregular(), Recount(m)) << "after vertex " << v;
+      ASSERT_EQ(p.ed.journal().LoggedFaces(), 0u);
+      ASSERT_EQ(p.ed.journal().LoggedVertices(), 0u);
+    }
+  }
+  EXPECT_GT(edits, 100);
+  EXPECT_GT(rep.transports + rep.glides, 0);
+  ASSERT_TRUE(CheckInvariants(m).ok);
+  p.state.RestoreSnapshot();
+  EXPECT_TRUE(test::Snapshot(m) == before);
+}
+
+TEST(ReductionParts, StepCloserChoosesWhatTryingAllSixChooses) {
+  TMesh m;
+  std::unique_ptr<SurfaceProjector> input;
+  ASSERT_TRUE(RemeshedCorpus(m, "bunny00.off", 3000, &input)) << "corpus mesh missing (run scripts/setup.sh)";
+  ReductionOptions opt;
+  Parts p(m, *input, opt);
+  AtomicOperations<TMesh>& ops = p.comp.atomic();
+  int pairs = 0, moved = 0;
+  for (bool folds : {true, false}) {
+    p.ed.geometry().checkFolds = folds;
+    for (size_t i = 0; i < m.vert.size() && pairs < 400; i += 3) {
+      const int v5 = int(i);
+      if (!p.ed.IsLive(v5) || p.ed.IsBoundary(v5) || p.ed.Valence(v5) != 5) continue;
+      int v7 = -1;
+      for (auto* nb : p.ed.Star(v5).neighbors)
+        if (p.ed.Valence(p.ed.Index(nb)) == 7 && !p.ed.IsBoundary(p.ed.Index(nb))) v7 = p.ed.Index(nb);
+      if (v7 < 0) continue;
+      ++pairs;
+      // the goal: a vertex some way off, different for each pair
+      const auto goal = m.vert[(i * 7919) % m.vert.size()].P();
+      // reference: apply each of the six, keep the strictly closest, ties to the lowest
+      auto mid = [&](int a, int b) { return (p.ed.V(a)->P() + p.ed.V(b)->P()) / 2; };
+      double best = double((mid(v5, v7) - goal).Norm());
+      int bestDir = -1;
+      for (int dir = 0; dir < 6; ++dir) {
+        auto cp = p.ed.Mark();
+        AtomicOutcome o = ops.MovePair57(v5, v7, dir);
+        if (o) {
+          const double d = double((mid(o.irregular[0], o.irregular[1]) - goal).Norm());
+          if (d < best) best = d, bestDir = dir;
+        }
+        p.ed.RollbackTo(cp);
+      }
+      const test::MeshSnapshot snap = test::Snapshot(m);
+      auto cp = p.ed.Mark();
+      AtomicOutcome got = p.transport.StepCloser(v5, v7, goal);
+      ASSERT_EQ(bool(got), bestDir >= 0) << "pair " << v5 << "-" << v7;
+      if (bestDir >= 0) {
+        ++moved;
+        const test::MeshSnapshot after = test::Snapshot(m);
+        p.ed.RollbackTo(cp);
+        AtomicOutcome ref = ops.MovePair57(v5, v7, bestDir);
+        ASSERT_TRUE(bool(ref));
+        EXPECT_EQ(got.description, ref.description);
+        EXPECT_EQ(got.irregular, ref.irregular);
+        EXPECT_TRUE(test::Snapshot(m) == after) << "pair " << v5 << "-" << v7;
+      }
+      p.ed.RollbackTo(cp);
+      ASSERT_TRUE(test::Snapshot(m) == snap);
+    }
+  }
+  EXPECT_GT(pairs, 50);
+  EXPECT_GT(moved, 25);
+}
+
+TEST(ReductionParts, GuardUndoesAnEditOffTheSurfaceAndRecordsItsVertex) {
+  TMesh m;
+  std::unique_ptr<SurfaceProjector> input;
+  ASSERT_TRUE(RemeshedCorpus(m, "bunny00.off", 3000, &input)) << "corpus mesh missing (run scripts/setup.sh)";
+  ReductionOptions opt;
+  opt.hausdorffBudgetPercent = 1e-7;  // no edit can stay this close to the input
+  opt.minAngleDeg = 0;                // and none is refused for its angles first
+  Parts p(m, *input, opt);
+  p.state.StartCount();
+  ReductionReport rep;
+  int tried = 0;
+  for (size_t i = 0; i < m.vert.size() && tried < 10; ++i) {
+    const int v = int(i);
+    if (!p.state.IsInteriorIrregular(v)) continue;
+    const test::MeshSnapshot snap = test::Snapshot(m);
+    const int undone = rep.undoneHausdorff;
+    EXPECT_FALSE(p.cancel.CancelAround(rep, v));
+    EXPECT_TRUE(test::Snapshot(m) == snap) << "vertex " << v;
+    if (rep.undoneHausdorff > undone) {
+      ++tried;
+      EXPECT_EQ(p.state.UndoneAt().count(v), 1u) << "vertex " << v;
+    }
+  }
+  EXPECT_EQ(tried, 10);
+  EXPECT_EQ(rep.undoneAngle + rep.undoneFrozen, 0);
+  EXPECT_EQ(p.state.Irregular(), Recount(m));
 }

@@ -1,0 +1,359 @@
+// filter_irregular: the edit guard of the automatic reduction (automatic_reduction.h). Every
+// edit is relaxed locally (RelaxAround) and kept only if, around it:
+//   * no triangle has an angle under the bound (unless one already had before the edit): this
+//     is what keeps the irregular vertices the surface needs (a v5 on an ear tip cannot be
+//     cancelled without squeezing the triangles there);
+//   * the faces stay within the Hausdorff budget of the input surface, both ways
+//     (DeviationAround: the edited faces to the input, and the input's samples (sampling:
+//     its sharp edges, optionally its whole surface thinned) to the edited faces);
+//   * no protected (frozen) vertex sees one of its faces change.
+// GuardedEdit is the scope of one edit: it remembers the journal checkpoint and the angle
+// before, and Accept() keeps or rolls back. Costs O(the edit's 2-ring) per check.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+#include <vcg/space/distance3.h>
+
+#include "graph_ops.h"
+#include "reduction_options.h"
+#include "reduction_state.h"
+#include "relaxation.h"
+#include "sample_grid.h"
+#include "surface_projector.h"
+
+namespace vcg_ext {
+namespace irregular {
+
+/// Why the guard refused an edit.
+enum class GuardVerdict { Kept = 0, Frozen = 1, Angle = 2, Hausdorff = 3 };
+
+template <class MeshType>
+class EditGuard {
+ public:
+  typedef MeshEditor<MeshType> Editor;
+  typedef typename MeshType::CoordType CoordType;
+  typedef typename MeshType::FaceType FaceType;
+
+  /// The per-edit check samples the input side on its sharp edges (and, if asked, at
+  /// hausdorffSamplesPerEdge points per edge elsewhere): between samples the true distance can
+  /// be higher, so a tenth of the budget is kept back; the driver measures the result and
+  /// redoes the run if it still overshoots (Tighten).
+  EditGuard(MeshType& m, const SurfaceProjector& original, const ReductionOptions& opt, Editor& ed,
+            ReductionState<MeshType>& state)
+      : m_(m), original_(original), opt_(opt), ed_(ed), state_(state) {
+    budget_ = 0.9 * opt_.hausdorffBudgetPercent / 100.0 * double(original.Diagonal());
+    BuildInputSamples(samplesPerEdge_ = opt_.hausdorffSamplesPerEdge);
+  }
+
+  /// Stricter per-edit checks for a retry: the budget scaled by `factor`, and the input
+  /// sampled all over (2 per edge length) if it was not already.
+  void Tighten(double factor) {
+    budget_ *= factor;
+    if (samplesPerEdge_ < 2) BuildInputSamples(samplesPerEdge_ = 2);
+  }
+
+  double Budget() const { return budget_; }
+  Editor& ed() { return ed_; }
+  ReductionState<MeshType>& state() { return state_; }
+
+  /// The verdict on an edit that touched `touched`, given the smallest angle around it before.
+  GuardVerdict Judge(const std::vector<int>& touched, double angleBefore) {
+    // A protected vertex next to a changed one would see one of its faces change (a collapse
+    // or split re-points the faces around the vertex it removes or splits).
+    if (!opt_.frozen.empty()) {
+      std::vector<int> live;
+      for (int t : touched)
+        if (ed_.IsLive(t)) live.push_back(t);
+      for (int x : KRing(m_, live, 1))
+        if (state_.Frozen(x)) return GuardVerdict::Frozen;
+    }
+    if (MinAngleAround(touched) < std::min(opt_.minAngleDeg, angleBefore)) return GuardVerdict::Angle;
+    if (DeviationAround(touched) > budget_) return GuardVerdict::Hausdorff;
+    return GuardVerdict::Kept;
+  }
+
+  /// Local relaxation (sec. 8) of the 2-ring of the seeds, journaled so the guard can undo it.
+  void RelaxAround(const std::vector<int>& seeds) {
+    std::vector<int> live;
+    for (int v : seeds)
+      if (ed_.IsLive(v)) live.push_back(v);
+    if (live.empty()) return;
+    std::vector<int> ring = KRing(m_, live, 2), movable;
+    for (int v : ring)
+      if (!state_.Frozen(v)) movable.push_back(v);
+    for (int v : movable) {
+      ed_.journal().SaveVertex(ed_.V(v));
+      for (auto& c : ed_.Star(v).corners) ed_.journal().SaveFace(c.f);
+    }
+    RelaxOptions ro;
+    ro.iterations = opt_.localRelaxIterations;
+    LocalRelax(m_, movable, &original_, ro);
+  }
+
+  /// Smallest angle (degrees) of the faces around the 2-ring of the seeds.
+  double MinAngleAround(const std::vector<int>& seeds) {
+    std::vector<int> live;
+    for (int v : seeds)
+      if (ed_.IsLive(v)) live.push_back(v);
+    double mn = 180;
+    for (int v : KRing(m_, live, 2))
+      for (auto& c : ed_.Star(v).corners) mn = std::min(mn, MinAngle(c.f));
+    return mn;
+  }
+
+  static double MinAngle(const FaceType* f) {
+    double mn = 180;
+    for (int z = 0; z < 3; ++z) {
+      auto a = f->cP((z + 1) % 3) - f->cP(z), b = f->cP((z + 2) % 3) - f->cP(z);
+      const double la = a.Norm(), lb = b.Norm();
+      const double c = la > 0 && lb > 0 ? double(a.dot(b)) / (la * lb) : 1;
+      mn = std::min(mn, std::acos(std::max(-1.0, std::min(1.0, c))) * 180 / M_PI);
+    }
+    return mn;
+  }
+
+  /// Local symmetric Hausdorff distance between the edited faces around the seeds and the
+  /// input surface: (a) the faces' edge midpoints and centroids to the input (their vertices
+  /// lie on it after projection), and (b) the input's samples on sharp edges (see the
+  /// constructor) over each edited star to the edited faces of one more ring (so a sample
+  /// near the border still finds its closest edited face). (b) is what catches a crease or a
+  /// tip cut off by an edit. Only "above the budget or not" matters, so (a) stops at the
+  /// first excess.
+  double DeviationAround(const std::vector<int>& seeds) {
+    std::vector<int> live;
+    for (int v : seeds)
+      if (ed_.IsLive(v)) live.push_back(v);
+    // the local relaxation after an edit moves its 2-ring, which changes the faces up to there
+    const std::vector<int> region = KRing(m_, live, 2);
+    std::vector<const FaceType*> changed, all;
+    std::unordered_set<const FaceType*> seen;
+    for (int v : region)
+      for (auto& c : ed_.Star(v).corners)
+        if (seen.insert(c.f).second) changed.push_back(c.f);
+    // (a) each changed face's centroid and edge midpoints (an edge shared by two changed faces
+    // once) against the input; a query looks no farther than just past the budget
+    const float reach = float(1.01 * budget_) + 1e-12f;
+    double mx = 0;
+    auto probe = [&](const CoordType& p) {
+      float d = 0;
+      original_.Closest(vcg::Point3f::Construct(p), &d, nullptr, reach);
+      mx = std::max(mx, double(d));
+      return mx <= budget_;
+    };
+    for (const FaceType* f : changed) {
+      if (!probe(CoordType((f->cP(0) + f->cP(1) + f->cP(2)) / 3))) return mx;
+      for (int z = 0; z < 3; ++z) {
+        const FaceType* g = f->cFFp(z);
+        if (g != f && g < f && seen.count(g)) continue;  // that edge is probed from g
+        if (!probe(CoordType((f->cP(z) + f->cP((z + 1) % 3)) / 2))) return mx;
+      }
+    }
+    // (b) the input samples near the changed faces against the edited surface there. The
+    // faces are hashed on a grid so each sample is compared with the faces around it only:
+    // O(region) for any edit size. Faces of one more ring are included so a sample by the
+    // border finds its true closest face; only samples closest to a changed face count, and
+    // only on the same side (a thin part's other sheet is not this edit's business).
+    all = changed;
+    for (int v : KRing(m_, region, 1))
+      for (auto& c : ed_.Star(v).corners)
+        if (seen.insert(c.f).second) all.push_back(c.f);
+    const float cellSize = float(std::max(2 * budget_, 1e-12));
+    auto key = [&](int64_t x, int64_t y, int64_t z) {
+      return (uint64_t(x & 0x1FFFFF) << 42) | (uint64_t(y & 0x1FFFFF) << 21) | uint64_t(z & 0x1FFFFF);
+    };
+    auto cellOf = [&](float x) { return int64_t(std::floor(x / cellSize)); };
+    std::unordered_map<uint64_t, std::vector<int>> faceCells;
+    std::vector<vcg::Triangle3<float>> tri;
+    std::vector<vcg::Box3<float>> boxes;
+    tri.reserve(all.size());
+    boxes.reserve(all.size());
+    for (size_t k = 0; k < all.size(); ++k) {
+      const FaceType* f = all[k];
+      tri.emplace_back(vcg::Point3f::Construct(f->cP(0)), vcg::Point3f::Construct(f->cP(1)),
+                       vcg::Point3f::Construct(f->cP(2)));
+      vcg::Box3<float> b;
+      for (int z = 0; z < 3; ++z) b.Add(tri.back().P(z));
+      boxes.push_back(b);
+      for (int64_t x = cellOf(b.min[0]); x <= cellOf(b.max[0]); ++x)
+        for (int64_t y = cellOf(b.min[1]); y <= cellOf(b.max[1]); ++y)
+          for (int64_t z = cellOf(b.min[2]); z <= cellOf(b.max[2]); ++z) faceCells[key(x, y, z)].push_back(int(k));
+    }
+    std::unordered_set<int> probed;
+    // A face spans several cells: measured once per sample (lastSample); and not at all when
+    // its box is already farther than the closest face so far (the distance to a triangle is
+    // at least the distance to its box; the margin covers rounding), which cannot change the
+    // closest face found.
+    std::vector<int> lastSample(all.size(), -1);
+    auto boxDistance = [&](const vcg::Box3<float>& b, const vcg::Point3f& p) {
+      float d2 = 0;
+      for (int a = 0; a < 3; ++a) {
+        const float e = std::max({b.min[a] - p[a], 0.f, p[a] - b.max[a]});
+        d2 += e * e;
+      }
+      return std::sqrt(d2);
+    };
+    for (size_t k = 0; k < changed.size(); ++k) {
+      vcg::Box3<float> b;
+      for (int z = 0; z < 3; ++z) b.Add(tri[k].P(z));
+      // a sample off the edited surface (a cut crease) lies outside the face's box: widen it;
+      // deviations grow edit by edit, so catching them below twice the budget suffices
+      b.Offset(float(2 * budget_));
+      for (int i : originalSamples_.InBox(b)) {
+        if (!probed.insert(i).second) continue;
+        const vcg::Point3f& p = originalSamples_.Point(i);
+        float best = std::numeric_limits<float>::max();
+        int bestFace = -1;
+        // faces within 2 * budget of p are in p's cell or the 26 around it
+        for (int64_t x = cellOf(p[0]) - 1; x <= cellOf(p[0]) + 1; ++x)
+          for (int64_t y = cellOf(p[1]) - 1; y <= cellOf(p[1]) + 1; ++y)
+            for (int64_t z = cellOf(p[2]) - 1; z <= cellOf(p[2]) + 1; ++z) {
+              auto it = faceCells.find(key(x, y, z));
+              if (it == faceCells.end()) continue;
+              for (int t : it->second) {
+                if (lastSample[size_t(t)] == i) continue;
+                lastSample[size_t(t)] = i;
+                if (boxDistance(boxes[size_t(t)], p) > best * (1 + 1e-4f)) continue;
+                float d;
+                vcg::Point3f q;
+                vcg::TrianglePointDistance(tri[size_t(t)], p, d, q);
+                if (d < best) best = d, bestFace = t;
+              }
+            }
+        // nothing within two budgets among the edited faces around: either the sample belongs
+        // elsewhere (another part of the surface) or the edit moved away from it
+        if (bestFace < 0) continue;
+        if (size_t(bestFace) >= changed.size()) continue;  // closest to an unchanged face
+        const vcg::Triangle3<float>& t = tri[size_t(bestFace)];
+        if (originalSamples_.Normal(i).dot((t.P(1) - t.P(0)) ^ (t.P(2) - t.P(0))) <= 0) continue;
+        mx = std::max(mx, double(best));
+      }
+    }
+    return mx;
+  }
+
+ private:
+  /// Input samples for the input-to-edited side of the Hausdorff check: the input's face
+  /// centroids and vertices thinned to perEdge per edited edge length (none if 0), plus
+  /// everything on its sharp edges (creases, tips), where an edit cuts corners. Oriented by
+  /// their face.
+  void BuildInputSamples(double perEdge) {
+    const double h = MeanEdgeLength(m_);
+    std::vector<vcg::Point3f> samples, normals;
+    SharpEdgeSamples(original_.Mesh(), opt_.sharpEdgeDeg, samples, normals);
+    if (perEdge > 0) ThinnedSurfaceSamples(original_.Mesh(), h / perEdge, samples, normals);
+    originalSamples_.Build(std::move(samples), std::move(normals), h);
+  }
+
+  /// Ends and midpoints of the edges of m whose dihedral angle exceeds angleDeg, with the
+  /// normal of each face along the edge. O(F log F).
+  static void SharpEdgeSamples(const SurfaceProjector::PMesh& m, double angleDeg, std::vector<vcg::Point3f>& pts,
+                               std::vector<vcg::Point3f>& nrm) {
+    std::map<std::pair<const void*, const void*>, std::vector<size_t>> edgeFaces;
+    for (size_t i = 0; i < m.face.size(); ++i)
+      for (int z = 0; z < 3; ++z) {
+        const void* a = m.face[i].cV(z);
+        const void* b = m.face[i].cV((z + 1) % 3);
+        edgeFaces[a < b ? std::make_pair(a, b) : std::make_pair(b, a)].push_back(i);
+      }
+    const double c = std::cos(angleDeg * M_PI / 180.0);
+    for (auto& kv : edgeFaces) {
+      const auto& fs = kv.second;
+      // boundary and non-manifold edges are features too
+      bool sharp = fs.size() != 2 || double(m.face[fs[0]].cN().dot(m.face[fs[1]].cN())) < c;
+      if (!sharp) continue;
+      const auto* a = static_cast<const SurfaceProjector::PMesh::VertexType*>(kv.first.first);
+      const auto* b = static_cast<const SurfaceProjector::PMesh::VertexType*>(kv.first.second);
+      for (size_t f : fs)
+        for (const vcg::Point3f& p : {a->cP(), b->cP(), vcg::Point3f((a->cP() + b->cP()) / 2.f)}) {
+          pts.push_back(p);
+          nrm.push_back(m.face[f].cN());
+        }
+    }
+  }
+
+  /// Face centroids and corners of m, at most one per cell of a grid of the given spacing.
+  static void ThinnedSurfaceSamples(const SurfaceProjector::PMesh& m, double spacing, std::vector<vcg::Point3f>& pts,
+                                    std::vector<vcg::Point3f>& nrm) {
+    std::unordered_map<uint64_t, char> taken;
+    auto cell = [&](const vcg::Point3f& p) {
+      auto c = [&](float x) { return uint64_t(int64_t(std::floor(x / spacing)) & 0x1FFFFF); };
+      return (c(p[0]) << 42) | (c(p[1]) << 21) | c(p[2]);
+    };
+    for (auto& f : m.face)
+      for (const vcg::Point3f& p : {vcg::Point3f((f.cP(0) + f.cP(1) + f.cP(2)) / 3.f), f.cP(0), f.cP(1), f.cP(2)})
+        if (taken.emplace(cell(p), 1).second) {
+          pts.push_back(p);
+          nrm.push_back(f.cN());
+        }
+  }
+
+  static double MeanEdgeLength(const MeshType& m) {
+    double sum = 0;
+    long n = 0;
+    for (auto& f : m.face)
+      if (!f.IsD())
+        for (int z = 0; z < 3; ++z, ++n) sum += double((f.cP(z) - f.cP((z + 1) % 3)).Norm());
+    return n ? sum / double(n) : 1;
+  }
+
+  MeshType& m_;
+  const SurfaceProjector& original_;
+  const ReductionOptions& opt_;
+  Editor& ed_;
+  ReductionState<MeshType>& state_;
+  double budget_ = 0;           ///< per-edit Hausdorff budget (absolute), tightened by retries
+  double samplesPerEdge_ = 0;   ///< input samples per edge length besides sharp edges, raised by retries
+  SampleGrid originalSamples_;  ///< the input's samples, for DeviationAround()
+};
+
+/// The scope of one guarded edit: remembers the checkpoint and the angle quality before;
+/// Accept() keeps the edit if the guard passes it, otherwise rolls back and records the
+/// refusal (by reason in the report, by subject vertex in the state). Edits nest; the
+/// outermost kept one commits the journal (ReductionState::Kept).
+template <class MeshType>
+class GuardedEdit {
+ public:
+  /// around: where the edit will happen (the angle before is measured on its 2-ring);
+  /// subjects: the irregular vertices it tries to cancel or move (default: around).
+  GuardedEdit(EditGuard<MeshType>& guard, ReductionReport& rep, const std::vector<int>& around,
+              const std::vector<int>* subjects = nullptr)
+      : g_(guard), rep_(rep), cp_(guard.ed().Mark()), angleBefore_(guard.MinAngleAround(around)),
+        subjects_(subjects ? *subjects : around) {
+    g_.state().EnterEdit();
+  }
+  ~GuardedEdit() { g_.state().LeaveEdit(); }
+  GuardedEdit(const GuardedEdit&) = delete;
+  GuardedEdit& operator=(const GuardedEdit&) = delete;
+
+  /// Keeps the edit (true) or undoes it (false).
+  bool Accept(const std::vector<int>& touched) {
+    const GuardVerdict v = g_.Judge(touched, angleBefore_);
+    if (v != GuardVerdict::Kept) {
+      Undo();
+      (v == GuardVerdict::Frozen ? rep_.undoneFrozen : v == GuardVerdict::Angle ? rep_.undoneAngle
+                                                                                : rep_.undoneHausdorff)++;
+      g_.state().Undone(subjects_);
+      return false;
+    }
+    g_.state().Kept(touched);
+    return true;
+  }
+  void Undo() { g_.ed().RollbackTo(cp_); }
+
+ private:
+  EditGuard<MeshType>& g_;
+  ReductionReport& rep_;
+  typename MeshEditor<MeshType>::Checkpoint cp_;
+  double angleBefore_;
+  std::vector<int> subjects_;
+};
+
+}  // namespace irregular
+}  // namespace vcg_ext

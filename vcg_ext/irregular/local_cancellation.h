@@ -1,0 +1,114 @@
+// filter_irregular: the local strategies of the automatic reduction (automatic_reduction.h):
+//   * type change (sec. 6.3): a vertex of valence <= 4 or >= 8 is split into v5 / v7;
+//   * local cancellation: wherever a single flip or collapse removes irregular vertices (an
+//     adjacent 5-5-7 / 5-7-7 triple becomes one v5 / v7, an adjacent 5-5-7-7 quadruple
+//     disappears: the atomic removals of sec. 6.2), it is applied.
+// Every edit goes through the edit guard (edit_guard.h). Preconditions as AutomaticReduction.
+#pragma once
+
+#include <algorithm>
+#include <map>
+#include <vector>
+
+#include "atomic_ops.h"
+#include "composite_ops.h"
+#include "edit_guard.h"
+#include "reduction_options.h"
+#include "reduction_state.h"
+
+namespace vcg_ext {
+namespace irregular {
+
+template <class MeshType>
+class LocalCancellation {
+ public:
+  typedef MeshEditor<MeshType> Editor;
+
+  LocalCancellation(MeshType& m, Editor& ed, CompositeOperations<MeshType>& comp, EditGuard<MeshType>& guard,
+                    ReductionState<MeshType>& state)
+      : m_(m), ed_(ed), comp_(comp), ops_(comp.atomic()), guard_(guard), state_(state) {}
+
+  /// Type change (sec. 6.3) of every free vertex of valence <= 4 or >= 8, each guarded.
+  /// O(V) scan, O(1) per split.
+  void ReduceTypes(ReductionReport& rep) {
+    for (size_t i = 0; i < m_.vert.size(); ++i) {
+      const int v = int(i);
+      if (!state_.IsInteriorIrregular(v) || state_.Frozen(v)) continue;
+      const int d = ed_.Valence(v);
+      if (d == 5 || d == 7) continue;
+      // the split relaxes the 2-ring of the vertices it touches, all within v's 2-ring
+      std::vector<int> around = KRing(m_, {v}, 2);
+      const std::vector<int> subject{v};
+      GuardedEdit<MeshType> g(guard_, rep, around, &subject);
+      CompositeOutcome o = comp_.ReduceTo57(v);
+      if (o) around.insert(around.end(), o.irregular.begin(), o.irregular.end());
+      if (o && g.Accept(around)) ++rep.typeSplits;
+      else ++rep.undone;
+    }
+  }
+
+  /// Applies a removal around v if one exists and keeps it if the guard passes it.
+  bool CancelAround(ReductionReport& rep, int v) {
+    GuardedEdit<MeshType> g(guard_, rep, {v});
+    AtomicOutcome o = ops_.FindAndApply(
+        {v}, [&](const std::map<int, int>& b, const std::map<int, int>& a) { return Reduces(b, a); },
+        "cancellation", false);
+    if (!o) return false;
+    std::vector<int> touched = state_.Changed(o);
+    guard_.RelaxAround(touched);
+    if (!g.Accept(touched)) {
+      ++rep.undone;
+      return false;
+    }
+    ++rep.localCancellations;
+    return true;
+  }
+
+  /// Applies a removal (sec. 6.2) involving one of the vertices, if one exists; adds what it
+  /// changed to touched and relaxes there (unguarded: the caller guards).
+  bool RemovalAt(const std::vector<int>& vs, std::vector<int>& touched, bool relax = true) {
+    for (int x : vs) {
+      if (!ed_.IsLive(x)) continue;
+      AtomicOutcome c = ops_.FindAndApply(
+          {x}, [&](const std::map<int, int>& bf, const std::map<int, int>& af) { return Reduces(bf, af); },
+          "cancellation", false);
+      if (!c) continue;
+      std::vector<int> changed = state_.Record(c, touched);
+      if (relax) guard_.RelaxAround(changed);
+      return true;
+    }
+    return false;
+  }
+
+  /// Count-reducing test for FindAndApply: the operation removes 2 or 4 irregular vertices
+  /// among those it touches, leaves only valences 5-7, and touches no frozen vertex nor an
+  /// excluded irregular vertex. These are exactly the atomic removals of sec. 6.2 (triple
+  /// into one vertex, quadruple).
+  bool Reduces(const std::map<int, int>& before, const std::map<int, int>& after) const {
+    int irrBefore = 0, irrAfter = 0;
+    for (auto& kv : before) {
+      if (state_.Frozen(kv.first)) return false;
+      if (kv.second != 6 && std::find(exclude.begin(), exclude.end(), kv.first) != exclude.end()) return false;
+      irrBefore += kv.second != 6;
+    }
+    for (auto& kv : after) {
+      if (kv.second == 0) continue;
+      if (kv.second < 5 || kv.second > 7) return false;
+      irrAfter += kv.second != 6;
+    }
+    return irrAfter <= irrBefore - 2;
+  }
+
+  std::vector<int> exclude;  ///< irregular vertices a removal must not involve (set by a transport)
+
+ private:
+  MeshType& m_;
+  Editor& ed_;
+  CompositeOperations<MeshType>& comp_;
+  AtomicOperations<MeshType>& ops_;
+  EditGuard<MeshType>& guard_;
+  ReductionState<MeshType>& state_;
+};
+
+}  // namespace irregular
+}  // namespace vcg_ext

@@ -1,0 +1,316 @@
+// filter_irregular: the transport strategies of the automatic reduction (automatic_reduction.h),
+// sec. 7.1, 7.2:
+//   * Transport: an adjacent 5-7 pair is moved by pair steps toward the nearest other irregular
+//     vertices, within a travel bound, then glides straight on, until a removal
+//     (local_cancellation.h) applies next to it; a transport that meets nothing to cancel is
+//     undone;
+//   * SplitAndAbsorb: an isolated v5 / v7 and an isolated vertex of the other type a few edges
+//     away (a stretched dislocation) are brought together by moves with 5-7 pair generation,
+//     each generated pair transported away to a cancellation, then cancelled as a pair.
+// A failed transport is the common case: a topology-only probe (no relaxation, no fold check,
+// undone) first finds whether and after how many steps a removal happens, and each step's
+// direction is chosen with the dry runs (StepCloser). Every kept edit passes the edit guard.
+#pragma once
+
+#include <algorithm>
+#include <functional>
+#include <queue>
+#include <unordered_map>
+#include <vector>
+
+#include "atomic_ops.h"
+#include "edit_guard.h"
+#include "local_cancellation.h"
+#include "reduction_options.h"
+#include "reduction_state.h"
+
+namespace vcg_ext {
+namespace irregular {
+
+template <class MeshType>
+class PairTransport {
+ public:
+  typedef MeshEditor<MeshType> Editor;
+  typedef typename MeshType::CoordType CoordType;
+  typedef std::function<AtomicOutcome(int, int)> PairStep;
+
+  PairTransport(MeshType& m, const ReductionOptions& opt, Editor& ed, AtomicOperations<MeshType>& ops,
+                EditGuard<MeshType>& guard, ReductionState<MeshType>& state, LocalCancellation<MeshType>& cancel)
+      : m_(m), opt_(opt), ed_(ed), ops_(ops), guard_(guard), state_(state), cancel_(cancel) {}
+
+  /// Transports a 5-7 pair containing v5 toward the nearest irregular vertices (graph
+  /// distance <= travel), one pair step at a time, until a removal applies next to it.
+  bool Transport(ReductionReport& rep, int v5, int travel) {
+    for (auto* nb : ed_.Star(v5).neighbors) {
+      const int w = ed_.Index(nb);
+      if (ed_.Valence(w) == 7 && !state_.Frozen(w)) return Transport(rep, v5, w, travel);
+    }
+    return false;
+  }
+
+  /// Transports the adjacent 5-7 pair (v5, v7) to a cancellation: toward the nearest
+  /// irregular vertices first, then gliding straight on. True if a removal happened; the
+  /// vertices it changed are added to *touchedOut.
+  bool Transport(ReductionReport& rep, int v5, int v7, int travel, std::vector<int>* touchedOut = nullptr) {
+    std::vector<int> targets = NearestIrregular({v5, v7}, travel, opt_.targetsPerPair);
+    for (int t : targets) {
+      const CoordType goal = ed_.V(t)->P();
+      if (TryMove(rep, v5, v7, [&](int a, int b) { return StepCloser(a, b, goal); }, travel + 2, rep.transports,
+                  touchedOut))
+        return true;
+    }
+    // No irregular vertex nearby takes the pair: let it glide straight on (repeating the same
+    // pair move parallel-transports it, sec. 6.2) until it meets one that does. This is what
+    // empties the walls of 5-7 pairs between differently oriented regular patches.
+    for (int dir : {1, 4, 0, 5, 2, 3})
+      if (TryMove(rep, v5, v7, [&](int a, int b) { return ops_.MovePair57(a, b, dir); }, opt_.glideTravel,
+                  rep.glides, touchedOut))
+        return true;
+    return false;
+  }
+
+  bool Isolated(int v) {
+    for (auto* nb : ed_.Star(v).neighbors)
+      if (ed_.Valence(ed_.Index(nb)) != 6) return false;
+    return true;
+  }
+
+  /// An isolated v5 / v7 and an isolated vertex w of the other type a few edges away form a
+  /// stretched dislocation that no single pair move can carry. v steps toward w with 5-7
+  /// pair generation (sec. 6.2), and each generated pair is transported away until it cancels
+  /// elsewhere (sec. 7.2); once v is next to w the two form an adjacent 5-7 pair, which is
+  /// transported to a cancellation in turn. Kept only if that last cancellation happens (net:
+  /// two irregular vertices fewer), otherwise undone.
+  bool SplitAndAbsorb(ReductionReport& rep, int v, int radius) {
+    const int dv = ed_.Valence(v);
+    std::vector<int> near = NearestIrregular({v}, radius, 1, dv == 5 ? 7 : 5);
+    if (near.empty()) return false;
+    const int w = near[0];
+    const ReductionReport saved = rep;
+    GuardedEdit<MeshType> g(guard_, rep, {v, w});
+    std::vector<int> touched{v, w};
+    int cur = v;
+    for (int hop = 0; hop <= radius && !ed_.Adjacent(cur, w); ++hop) {
+      std::unordered_map<int, int> dist = Distances(w, radius + 1);
+      const int here = dist.count(cur) ? dist[cur] : radius + 2;
+      const int d = ed_.Valence(cur);
+      int next = -1;
+      for (int k = 0; k < d && next < 0; ++k) {
+        // the neighbour the vertex moves to must be closer to w
+        const int to = ops_.NeighbourFrom(cur, -1, d == 5 ? k : k + 1);
+        if (to < 0 || !dist.count(to) || dist[to] >= here) continue;
+        auto cp = ed_.Mark();
+        const size_t mark = touched.size();
+        AtomicOutcome gen = ops_.MoveWithPairGeneration(cur, k);
+        if (!gen) continue;
+        guard_.RelaxAround(state_.Record(gen, touched));
+        const int moved = gen.irregular[0];
+        int p5 = gen.irregular[1], p7 = gen.irregular[2];
+        if (ed_.Valence(p5) != 5) std::swap(p5, p7);
+        // a removal of the generated pair against the moved vertex would only undo the step
+        cancel_.exclude = {moved, w};
+        const bool away = Transport(rep, p5, p7, opt_.maxTravel, &touched);
+        cancel_.exclude.clear();
+        if (away) {
+          next = moved;
+        } else {
+          touched.resize(mark);
+          ed_.RollbackTo(cp);
+        }
+      }
+      if (next < 0) break;
+      cur = next;
+    }
+    if (ed_.IsLive(cur) && ed_.IsLive(w) && ed_.Adjacent(cur, w) && ed_.Valence(cur) + ed_.Valence(w) == 12) {
+      const int a5 = ed_.Valence(cur) == 5 ? cur : w, a7 = a5 == cur ? w : cur;
+      if (Transport(rep, a5, a7, opt_.maxTravel, &touched) && g.Accept(touched)) {
+        ++rep.splitAbsorptions;
+        return true;
+      }
+    }
+    // the report goes back to before the attempt, but keeps what the guard refused in it
+    const int angle = rep.undoneAngle, hausdorff = rep.undoneHausdorff, frozen = rep.undoneFrozen;
+    rep = saved;
+    rep.undoneAngle = angle, rep.undoneHausdorff = hausdorff, rep.undoneFrozen = frozen;
+    g.Undo();
+    return false;
+  }
+
+  /// The pair step (one of the six of sec. 6.2) after which the pair's midpoint is closest to
+  /// `goal`, if it gets closer; refused steps (blocked, folds, frozen) are skipped; ties go
+  /// to the lowest direction. The dry runs (PredictMovePair57) rule out blocked and frozen
+  /// steps and bound each step's distance from below without editing: a flip moves no
+  /// vertex, a collapse leaves its survivor at one of three known places (graph_ops.h
+  /// Collapse); only a split's new positions need the step applied. A step is applied (and
+  /// rolled back) only if its bound can still beat the best so far, so the choice is the
+  /// one trying all six would make, at usually two or three applications instead of seven.
+  AtomicOutcome StepCloser(int v5, int v7, CoordType goal) {
+    auto mid = [&](int a, int b) { return (ed_.V(a)->P() + ed_.V(b)->P()) / 2; };
+    auto dist = [&](const CoordType& p) { return double((p - goal).Norm()); };
+    double best = dist(mid(v5, v7));
+    int bestDir = -1;
+    struct Bound {
+      double d;
+      int dir;
+      bool operator<(const Bound& o) const { return d < o.d || (d == o.d && dir < o.dir); }
+    };
+    std::vector<Bound> bounds;
+    for (int dir = 0; dir < 6; ++dir) {
+      AtomicPrediction pr = ops_.PredictMovePair57(v5, v7, dir);
+      bool ok = bool(pr);
+      for (auto& kv : pr.changes) ok = ok && !state_.Frozen(kv.first);
+      if (!ok) continue;
+      double lb = 0;  // a split moves the pair: apply it to know
+      if (pr.steps.size() == 1 && pr.steps[0].kind == GraphStep::kFlip) {
+        lb = dist(mid(pr.pair5, pr.pair7));
+      } else if (pr.steps.size() == 1 && pr.steps[0].kind == GraphStep::kCollapse) {
+        // collapse x into the survivor (pair7): it ends at the midpoint, or its own or x's place
+        const CoordType px = ed_.V(pr.steps[0].x)->P(), ps = ed_.V(pr.steps[0].y)->P(), p5 = ed_.V(pr.pair5)->P();
+        lb = std::min({dist((p5 + (px + ps) / 2) / 2), dist((p5 + ps) / 2), dist((p5 + px) / 2)});
+      }
+      // a margin for rounding: the bound must never exceed the distance after the real step
+      bounds.push_back({lb * (1 - 1e-9) - 1e-12, dir});
+    }
+    std::sort(bounds.begin(), bounds.end());
+    for (const Bound& b : bounds) {
+      if (b.d > best || (bestDir >= 0 && b.d == best && b.dir > bestDir)) break;
+      auto cp = ed_.Mark();
+      AtomicOutcome o = ops_.MovePair57(v5, v7, b.dir);
+      if (o) {
+        const double d = dist(mid(o.irregular[0], o.irregular[1]));
+        if (d < best || (d == best && bestDir >= 0 && b.dir < bestDir)) best = d, bestDir = b.dir;
+      }
+      ed_.RollbackTo(cp);
+    }
+    if (bestDir < 0) return AtomicOutcome();
+    return ops_.MovePair57(v5, v7, bestDir);
+  }
+
+ private:
+  /// Moves the pair with `step` until a removal applies next to it, and keeps the result if
+  /// it is good enough (the guard). A failed transport is the common case and the expensive
+  /// one (a relaxation per step), so a topology-only probe (no relaxation, no fold check,
+  /// undone) first finds whether and after how many steps a removal happens.
+  bool TryMove(ReductionReport& rep, int v5, int v7, const PairStep& step, int maxSteps, int& successes,
+               std::vector<int>* touchedOut) {
+    int reach = -1;
+    {
+      auto cp = ed_.Mark();
+      const bool folds = ed_.geometry().checkFolds;
+      ed_.geometry().checkFolds = false;
+      std::vector<int> scratch;
+      reach = MoveUntilRemoval(v5, v7, step, maxSteps, false, scratch);
+      ed_.geometry().checkFolds = folds;
+      ed_.RollbackTo(cp);
+    }
+    if (reach < 0) return false;
+    GuardedEdit<MeshType> g(guard_, rep, {v5, v7});
+    std::vector<int> touched{v5, v7};
+    const int steps = MoveUntilRemoval(v5, v7, step, reach + 2, true, touched);
+    if (steps >= 0 && g.Accept(touched)) {
+      if (touchedOut) touchedOut->insert(touchedOut->end(), touched.begin(), touched.end());
+      ++successes;
+      rep.pairSteps += steps;
+      return true;
+    }
+    if (steps >= 0) ++rep.undone;
+    g.Undo();
+    return false;
+  }
+
+  /// Steps the pair (a, b) with `step` until a removal (sec. 6.2) applies next to it; when no
+  /// step is possible, one more step in any direction may set the removal up. Returns the
+  /// number of pair steps taken, or -1 if no removal happened (the caller undoes).
+  int MoveUntilRemoval(int a, int b, const PairStep& step, int maxSteps, bool relax, std::vector<int>& touched) {
+    for (int s = 0; s < maxSteps; ++s) {
+      auto cp = ed_.Mark();
+      AtomicOutcome o = step(a, b);
+      bool ok = bool(o);
+      for (auto& kv : o.changes) ok = ok && !state_.Frozen(kv.first);
+      if (!ok) {
+        ed_.RollbackTo(cp);
+        return StepAndCancel(a, b, touched, relax) ? s + 1 : -1;
+      }
+      a = o.irregular[0];
+      b = o.irregular[1];
+      state_.Record(o, touched);
+      if (relax) guard_.RelaxAround({a, b});
+      if (cancel_.RemovalAt({a, b}, touched, relax)) return s + 1;
+    }
+    return -1;
+  }
+
+  /// One pair step, in the first of the six directions after which a removal applies. A step
+  /// its dry run refuses (blocked, or touching a frozen vertex) is not tried.
+  bool StepAndCancel(int v5, int v7, std::vector<int>& touched, bool relax = true) {
+    for (int dir = 0; dir < 6; ++dir) {
+      AtomicPrediction pr = ops_.PredictMovePair57(v5, v7, dir);
+      bool ok = bool(pr);
+      for (auto& kv : pr.changes) ok = ok && !state_.Frozen(kv.first);
+      if (!ok) continue;
+      auto cp = ed_.Mark();
+      const size_t mark = touched.size();
+      AtomicOutcome o = ops_.Apply(pr);
+      if (o) {
+        state_.Record(o, touched);
+        if (cancel_.RemovalAt({o.irregular[0], o.irregular[1]}, touched, relax)) return true;
+      }
+      touched.resize(mark);
+      ed_.RollbackTo(cp);
+    }
+    return false;
+  }
+
+  /// Irregular vertices (not in `from`) within `radius` edges of `from`, nearest first.
+  std::vector<int> NearestIrregular(const std::vector<int>& from, int radius, int count, int valence = 0) {
+    std::unordered_map<int, int> dist;
+    std::queue<int> q;
+    for (int v : from) dist[v] = 0, q.push(v);
+    std::vector<int> found;
+    while (!q.empty() && int(found.size()) < count) {
+      const int v = q.front();
+      q.pop();
+      if (dist[v] >= radius) continue;
+      VertexStar<MeshType> s = ed_.Star(v);
+      std::vector<int> next;
+      for (auto* nb : s.neighbors) next.push_back(ed_.Index(nb));
+      std::sort(next.begin(), next.end());  // deterministic order
+      for (int w : next) {
+        if (dist.count(w)) continue;
+        dist[w] = dist[v] + 1;
+        q.push(w);
+        if (state_.IsInteriorIrregular(w) && !state_.Frozen(w) && (valence == 0 || ed_.Valence(w) == valence) &&
+            int(found.size()) < count)
+          found.push_back(w);
+      }
+    }
+    return found;
+  }
+
+  /// Graph distances from v, up to radius.
+  std::unordered_map<int, int> Distances(int v, int radius) {
+    std::unordered_map<int, int> dist{{v, 0}};
+    std::vector<int> frontier{v};
+    for (int r = 1; r <= radius; ++r) {
+      std::vector<int> next;
+      for (int x : frontier)
+        for (auto* nb : ed_.Star(x).neighbors) {
+          const int y = ed_.Index(nb);
+          if (dist.emplace(y, r).second) next.push_back(y);
+        }
+      frontier.swap(next);
+    }
+    return dist;
+  }
+
+  MeshType& m_;
+  const ReductionOptions& opt_;
+  Editor& ed_;
+  AtomicOperations<MeshType>& ops_;
+  EditGuard<MeshType>& guard_;
+  ReductionState<MeshType>& state_;
+  LocalCancellation<MeshType>& cancel_;
+};
+
+}  // namespace irregular
+}  // namespace vcg_ext

@@ -1,0 +1,162 @@
+// filter_irregular: the state of one automatic reduction run (automatic_reduction.h), apart
+// from its settings (reduction_options.h): the running count of irregular vertices, when each
+// vertex was last edited or failed, the edits the guard undid per vertex, and the one copy of
+// the input that undoes a whole run. Everything here costs O(touched) per edit; only
+// StartCount() and the snapshot are O(mesh), once per run.
+#pragma once
+
+#include <map>
+#include <vector>
+
+#include "atomic_ops.h"
+#include "graph_ops.h"
+#include "journal.h"
+#include "reduction_options.h"
+#include "relaxation.h"
+
+namespace vcg_ext {
+namespace irregular {
+
+template <class MeshType>
+class ReductionState {
+ public:
+  typedef MeshEditor<MeshType> Editor;
+
+  ReductionState(MeshType& m, Editor& ed, const ReductionOptions& opt) : m_(m), ed_(ed), opt_(opt), snapshot_(m) {}
+
+  bool Frozen(int v) const { return v >= 0 && size_t(v) < opt_.frozen.size() && opt_.frozen[size_t(v)]; }
+  bool IsInteriorIrregular(int v) { return ed_.IsLive(v) && !ed_.IsBoundary(v) && ed_.Valence(v) != 6; }
+
+  // ------------------------------------------------------------ running count
+  /// Interior irregular vertices now.
+  int Irregular() const { return irregular_; }
+  /// The target count (if any) is reached.
+  bool Done() const { return opt_.targetCount > 0 && irregular_ <= opt_.targetCount; }
+
+  /// One O(V) pass per run; afterwards UpdateCount keeps the count from the touched vertices.
+  void StartCount() {
+    isIrregular_.assign(m_.vert.size(), 0);
+    irregular_ = 0;
+    for (size_t i = 0; i < m_.vert.size(); ++i) irregular_ += isIrregular_[i] = IsInteriorIrregular(int(i));
+  }
+
+  /// After a kept edit: valences change only at the vertices an edit touched (those it
+  /// deleted included) and their neighbours (a collapse re-points the faces around the vertex
+  /// it removes, all in the ring of the survivor). O(touched).
+  void UpdateCount(const std::vector<int>& touched) {
+    std::vector<int> live;
+    for (int t : touched)
+      if (ed_.IsLive(t)) live.push_back(t);
+    std::vector<int> around = KRing(m_, live, 1);
+    around.insert(around.end(), touched.begin(), touched.end());
+    around.insert(around.end(), removed_.begin(), removed_.end());
+    if (isIrregular_.size() < m_.vert.size()) isIrregular_.resize(m_.vert.size(), 0);
+    for (int x : around) {
+      if (x < 0 || size_t(x) >= isIrregular_.size()) continue;
+      const char now = IsInteriorIrregular(x);
+      irregular_ += int(now) - int(isIrregular_[size_t(x)]);
+      isIrregular_[size_t(x)] = now;
+    }
+  }
+
+  // ------------------------------------------------------------ what an edit touched
+  /// The vertices an atomic operation changed and that still exist; the ones it deleted are
+  /// remembered for UpdateCount until the outermost guarded edit ends.
+  std::vector<int> Changed(const AtomicOutcome& o) {
+    std::vector<int> c;
+    for (auto& kv : o.changes) (kv.second != 0 ? c : removed_).push_back(kv.first);
+    return c;
+  }
+  /// Appends what o changed to touched; returns it too.
+  std::vector<int> Record(const AtomicOutcome& o, std::vector<int>& touched) {
+    std::vector<int> c = Changed(o);
+    touched.insert(touched.end(), c.begin(), c.end());
+    return c;
+  }
+
+  // ------------------------------------------------------------ guarded edits (edit_guard.h)
+  /// A guarded edit begins (they nest: a split-and-absorb contains transports).
+  void EnterEdit() { ++depth_; }
+  /// It ends; the outermost one forgets the deleted vertices it collected.
+  void LeaveEdit() {
+    if (--depth_ == 0) removed_.clear();
+  }
+  /// A guarded edit was kept: stamp its vertices; the outermost one also updates the count
+  /// and commits the editor's journal, so the journal holds one edit at a time.
+  void Kept(const std::vector<int>& touched) {
+    ++epoch_;
+    for (int t : touched) Stamp(editedAt_, t, epoch_);
+    if (depth_ == 1) {
+      UpdateCount(touched);
+      ed_.Commit();
+    }
+  }
+  /// The guard undid an edit that tried to cancel or move `subjects`.
+  void Undone(const std::vector<int>& subjects) {
+    for (int v : subjects)
+      if (v >= 0) ++undoneAt_[v];
+  }
+  /// Edits undone per vertex index (indices of the mesh during the run).
+  const std::map<int, int>& UndoneAt() const { return undoneAt_; }
+
+  // ------------------------------------------------------------ repeated failures
+  /// A transport from v failed now.
+  void Failed(int v) { Stamp(failedAt_, v, epoch_); }
+  /// True if a transport from v already failed and nothing within `radius` edges has been
+  /// edited since: trying again would fail the same way (the search is deterministic).
+  bool UnchangedSinceFailure(int v, int radius) {
+    const long failed = StampOf(failedAt_, v);
+    if (failed < 0) return false;
+    for (int x : KRing(m_, {v}, radius))
+      if (StampOf(editedAt_, x) > failed) return false;
+    return true;
+  }
+
+  // ------------------------------------------------------------ the whole-run undo
+  /// Saves every vertex and face once: O(V + F) memory whatever the number of edits.
+  void TakeSnapshot() {
+    snapshot_.Commit();
+    mark_ = snapshot_.Mark();
+    for (auto& f : m_.face) snapshot_.SaveFace(&f);
+    for (auto& v : m_.vert) snapshot_.SaveVertex(&v);
+  }
+  /// Gives back the mesh as TakeSnapshot saw it, bit for bit, and forgets the snapshot.
+  void RestoreSnapshot() {
+    ed_.Commit();  // what an interrupted edit logged is overwritten below
+    snapshot_.RollbackTo(mark_);
+  }
+  void DropSnapshot() { snapshot_.Commit(); }
+
+  /// Forgets the edit history (a retry starts from the restored input).
+  void Reset() {
+    epoch_ = 0;
+    editedAt_.clear();
+    failedAt_.clear();
+    undoneAt_.clear();
+    removed_.clear();
+  }
+
+ private:
+  static void Stamp(std::vector<long>& at, int v, long when) {
+    if (v < 0) return;
+    if (size_t(v) >= at.size()) at.resize(size_t(v) + 1, -1);
+    at[size_t(v)] = when;
+  }
+  static long StampOf(const std::vector<long>& at, int v) { return size_t(v) < at.size() ? at[size_t(v)] : -1; }
+
+  MeshType& m_;
+  Editor& ed_;
+  const ReductionOptions& opt_;
+  EditJournal<MeshType> snapshot_;  ///< the input, for the whole-run undo
+  typename EditJournal<MeshType>::Checkpoint mark_;
+  int depth_ = 0;                   ///< guarded edits in progress
+  std::vector<char> isIrregular_;   ///< per vertex: counted in irregular_
+  int irregular_ = 0;               ///< interior irregular vertices now
+  std::vector<int> removed_;        ///< vertices deleted by the current outermost edit
+  long epoch_ = 0;                  ///< kept edits so far
+  std::vector<long> editedAt_, failedAt_;  ///< per vertex: epoch of its last kept edit / failed attempt
+  std::map<int, int> undoneAt_;     ///< per vertex: edits the guard undid
+};
+
+}  // namespace irregular
+}  // namespace vcg_ext
