@@ -149,8 +149,16 @@ FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par
            rep.typeSplits, rep.localCancellations, rep.transports, rep.glides, rep.pairSteps, rep.splitAbsorptions,
            rep.undone);
   ctx.Logf("Undone by the edit guard: %d for a triangle under the minimum angle, %d for leaving the Hausdorff budget, "
-           "%d for touching the protected selection; %d vertices had an edit undone",
-           rep.undoneAngle, rep.undoneHausdorff, rep.undoneFrozen, int(rep.undoneAt.size()));
+           "%d for touching the protected selection, %d for adding boundary irregular vertices; %d vertices had an "
+           "edit undone",
+           rep.undoneAngle, rep.undoneHausdorff, rep.undoneFrozen, rep.undoneBoundary, int(rep.undoneAt.size()));
+  const irr::BoundaryReductionReport& bs = rep.boundaryStage;
+  ctx.Logf("Boundary: %d -> %d boundary irregular vertices (corner rule; never more than the input's); the boundary "
+           "stage absorbed %d v5, %d v7 and %d 5-7 pairs (%d moved there first), %d hops, cancelling %d boundary "
+           "irregular vertices",
+           rep.boundaryIrregularBefore, rep.boundaryIrregularAfter, bs.absorbedV5, bs.absorbedV7, bs.absorbedPairs,
+           bs.pairsMoved, bs.hops, bs.cancelled);
+  ctx.Logf("Why the irregular vertices left stay: %s", rep.leftovers.Summary().c_str());
   if (rep.timeLimitReached) ctx.Warnf("Time limit reached: editing stopped early");
   if (rep.globalRelaxUndone) ctx.Logf("The final global relaxation lowered the smallest angle and was undone");
   if (rep.finalSweepsUndone) ctx.Logf("The final local relaxation sweeps overshot the Hausdorff budget and were undone");
@@ -194,6 +202,20 @@ FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par
   out.SetInt("undone_angle", rep.undoneAngle);
   out.SetInt("undone_hausdorff", rep.undoneHausdorff);
   out.SetInt("undone_frozen", rep.undoneFrozen);
+  out.SetInt("undone_boundary", rep.undoneBoundary);
+  out.SetInt("boundary_irregular_before", rep.boundaryIrregularBefore);
+  out.SetInt("boundary_irregular_after", rep.boundaryIrregularAfter);
+  out.SetInt("boundary_absorbed", bs.absorbedV5 + bs.absorbedV7 + 2 * bs.absorbedPairs);
+  out.SetInt("boundary_cancelled", bs.cancelled);
+  out.SetInt("leftover_caps", rep.leftovers.caps);
+  out.SetInt("leftover_saddles", rep.leftovers.saddles);
+  out.SetInt("leftover_thin", rep.leftovers.thin);
+  out.SetInt("leftover_no_partner", rep.leftovers.noPartner);
+  out.SetInt("leftover_budget", rep.leftovers.budget);
+  out.SetInt("leftover_untried", rep.leftovers.untried);
+  out.SetInt("leftover_boundary", rep.leftovers.boundary);
+  out.SetInt("leftover_protected", rep.leftovers.protectedCount);
+  out.SetInt("leftover_on_thin_parts", rep.leftovers.onThinPart);
   out.SetInt("budget_retries", rep.budgetRetries);
   out.SetFloat("hausdorff_percent", rep.hausdorffPercent);
   out.SetFloat("min_angle_after", shape.minAngleDeg);

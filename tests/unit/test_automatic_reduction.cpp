@@ -411,3 +411,65 @@ TEST(ReductionParts, GuardUndoesAnEditOffTheSurfaceAndRecordsItsVertex) {
   EXPECT_EQ(rep.undoneAngle + rep.undoneFrozen, 0);
   EXPECT_EQ(p.state.Irregular(), Recount(m));
 }
+
+// Meshes with holes (issue 14, item 3): the boundary stage moves interior irregular vertices
+// into the boundary or cancels them there, and the edit guard keeps the boundary irregular
+// count (corner rule) at most the input's, with or without the stage.
+class ReductionWithHoles : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(ReductionWithHoles, InteriorGoesIntoTheBoundaryNeverAddingBoundaryIrregularVertices) {
+  IrregularByPlace after[2];
+  ReductionReport reports[2];
+  for (int withStage = 0; withStage < 2; ++withStage) {
+    TMesh m;
+    std::unique_ptr<SurfaceProjector> input;
+    ASSERT_TRUE(RemeshedCorpus(m, GetParam(), 3000, &input)) << "corpus mesh missing (run scripts/setup.sh)";
+    const IrregularByPlace before = CountIrregularByPlace(m);
+    ASSERT_GT(before.boundary + before.interior, 0);
+    ReductionOptions opt;
+    opt.boundaryStage = withStage == 1;
+    AutomaticReduction<TMesh> ar(m, *input, opt);
+    ReductionReport& r = reports[withStage] = ar.Run();
+    ASSERT_TRUE(r) << r.result.reason;
+    Result inv = CheckInvariants(m);
+    ASSERT_TRUE(inv.ok) << inv.reason;
+    after[withStage] = CountIrregularByPlace(m);
+    // the report's counts are the mesh's
+    EXPECT_EQ(r.boundaryIrregularBefore, before.boundary);
+    EXPECT_EQ(r.boundaryIrregularAfter, after[withStage].boundary);
+    EXPECT_EQ(r.irregularBefore, before.interior);
+    EXPECT_EQ(r.irregularAfter, after[withStage].interior);
+    // never more boundary irregular vertices than the input had
+    EXPECT_LE(after[withStage].boundary, before.boundary) << GetParam() << (withStage ? " with" : " without")
+                                                          << " the boundary stage";
+    // every irregular vertex left has one reason, and the reasons add up
+    const LeftoverReport& lo = r.leftovers;
+    EXPECT_EQ(lo.total, after[withStage].Total());
+    int sum = 0;
+    for (int k = 0; k < kLeftoverReasons; ++k) sum += lo.counts[k];
+    EXPECT_EQ(sum, lo.total);
+    EXPECT_EQ(lo.boundary + lo.protectedCount + lo.caps + lo.saddles + lo.thin + lo.noPartner + lo.budget + lo.untried,
+              lo.total);
+    for (const LeftoverVertex& x : lo.vertices) {
+      ASSERT_GE(x.vertex, 0);
+      ASSERT_LT(size_t(x.vertex), m.vert.size());  // indices of the compacted result
+      const VertexStar<TMesh> s = StarOf<TMesh>(&m.vert[size_t(x.vertex)]);
+      EXPECT_NE(s.Valence(), RegularValenceOf(s)) << "vertex " << x.vertex << " is reported left but is regular";
+    }
+    std::printf("%s %s the boundary stage: interior %d -> %d, boundary %d -> %d; stage: %d kept (%d cancelled), "
+                "guard refused %d for the boundary count; left: %s\n",
+                GetParam(), withStage ? "with" : "without", before.interior, after[withStage].interior, before.boundary,
+                after[withStage].boundary, r.boundaryStage.Kept(), r.boundaryStage.cancelled, r.undoneBoundary,
+                lo.Summary().c_str());
+  }
+  // the stage pays: fewer interior irregular vertices than the same run without it
+  EXPECT_GT(reports[1].boundaryStage.Kept(), 0);
+  EXPECT_LT(after[1].interior, after[0].interior);
+  EXPECT_EQ(reports[0].boundaryStage.Kept(), 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Corpus, ReductionWithHoles, ::testing::Values("mesh_with_border.off", "holes.off"),
+                         [](const ::testing::TestParamInfo<const char*>& i) {
+                           std::string s(i.param);
+                           return s.substr(0, s.find('.'));
+                         });

@@ -526,10 +526,9 @@ TEST_P(BoundaryReductionCorpus, AngleAndHausdorffGuard) {
               r.boundaryAdded + r2.boundaryAdded, r.undone + r2.undone, guard.angleRefusals, guard.distanceRefusals);
 }
 
-// The stage where the driver will call it: after the interior reduction, on what it left near
-// the holes. The limit is the input's boundary count (the driver builds the stage before its
-// first edit); the reduction itself may have raised the boundary count past it, and then the
-// stage may only lower it.
+// The stage once more after a whole reduction (which already runs it once per sweep), on what
+// is left near the holes. The limit is the input's boundary count; the reduction's edit guard
+// keeps the count at most that, and the stage may only lower it further.
 TEST(BoundaryReductionRuns, AfterTheInteriorReductionOnMeshWithBorder) {
   TMesh m;
   std::unique_ptr<SurfaceProjector> input;
@@ -541,6 +540,7 @@ TEST(BoundaryReductionRuns, AfterTheInteriorReductionOnMeshWithBorder) {
     ASSERT_TRUE(ar.Run());
   }
   const IrregularByPlace reduced = CountIrregularByPlace(m);
+  EXPECT_LE(reduced.boundary, remeshed.boundary);
   MeshEditor<TMesh> ed(m);
   AngleHausdorffGuard guard(m, ed, *input);
   BoundaryReductionOptions opt;
@@ -555,8 +555,7 @@ TEST(BoundaryReductionRuns, AfterTheInteriorReductionOnMeshWithBorder) {
   }
   EXPECT_EQ(guard.broken, 0) << guard.firstProblem;
   const IrregularByPlace now = CountIrregularByPlace(m);
-  EXPECT_GT(kept, 0);
-  EXPECT_LT(now.interior, reduced.interior);
+  EXPECT_LE(now.interior, reduced.interior);
   EXPECT_LE(now.boundary, std::max(remeshed.boundary, reduced.boundary));
   EXPECT_EQ(CountFoldedEdges(m), 0);
   ed.Commit();

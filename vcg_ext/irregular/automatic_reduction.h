@@ -20,7 +20,8 @@
 // (as journal records) for the whole-run undo.
 //
 // Preconditions: a manifold, consistently oriented triangle mesh with FF and VF adjacency up to
-// date (see mesh_checks.h). Boundary vertices are never edited. Postconditions: the mesh is a
+// date (see mesh_checks.h). Boundary vertices are edited only by the boundary stage (boundary_reduction.h), which never
+// raises their irregular count above the input's. Postconditions: the mesh is a
 // valid 2-manifold with the same topology, compacted; on interruption (progress callback
 // returns false) the mesh is exactly as it was.
 #pragma once
@@ -28,6 +29,7 @@
 #include <algorithm>
 #include <chrono>
 #include <map>
+#include <memory>
 #include <vector>
 
 #include "composite_ops.h"
@@ -68,10 +70,12 @@ class AutomaticReduction {
     t0_ = std::chrono::steady_clock::now();
     state_.TakeSnapshot();
     Histogram(rep.histogramBefore, rep.irregularBefore);
+    rep.boundaryIrregularBefore = CountIrregularByPlace(m_).boundary;
     for (int attempt = 0;; ++attempt) {
       ReductionReport r;
       r.histogramBefore = rep.histogramBefore;
       r.irregularBefore = rep.irregularBefore;
+      r.boundaryIrregularBefore = rep.boundaryIrregularBefore;
       r.budgetRetries = attempt;
       Edit(r);
       if (r.interrupted) {
@@ -105,11 +109,13 @@ class AutomaticReduction {
     }
     ed_.Commit();
     state_.DropSnapshot();
+    if (!rep.allUndone) Explain(rep);
     rep.undoneAt = CompactedIndices(state_.UndoneAt());
     vcg::tri::Allocator<MeshType>::CompactEveryVector(m_);
     vcg::tri::UpdateTopology<MeshType>::FaceFace(m_);
     vcg::tri::UpdateTopology<MeshType>::VertexFace(m_);
     Histogram(rep.histogramAfter, rep.irregularAfter);
+    rep.boundaryIrregularAfter = CountIrregularByPlace(m_).boundary;
     rep.globalRelaxUndone = !globalKept_;
     rep.finalSweepsUndone = !sweepsKept_;
     rep.seconds = Elapsed();
@@ -126,14 +132,33 @@ class AutomaticReduction {
     state_.StartCount();
     bool go = Stage(rep, 0, "Splitting high and low valences");
     if (go) cancel_.ReduceTypes(rep);
+    // The boundary stage (boundary_reduction.h): its edits pass the same guard; a kept one is
+    // committed only once the stage has re-counted it (BoundaryEditGuard::end).
+    std::unique_ptr<GuardedEdit<MeshType>> boundaryEdit;
+    BoundaryEditGuard bg;
+    bg.begin = [&](const std::vector<int>& around) {
+      boundaryEdit.reset(new GuardedEdit<MeshType>(guard_, rep, around));
+    };
+    bg.relax = [&](const std::vector<int>& seeds) { guard_.RelaxAround(seeds); };
+    bg.accept = [&](const std::vector<int>& touched) {
+      guard_.RelaxAround(touched);
+      return boundaryEdit && boundaryEdit->Judge(touched);
+    };
+    bg.end = [&](bool kept, const std::vector<int>& touched) {
+      if (boundaryEdit && kept) boundaryEdit->Keep(touched);
+      boundaryEdit.reset();
+    };
+    BoundaryReductionOptions bo = opt_.boundary;
+    bo.boundaryLimit = rep.boundaryIrregularBefore;  // the input's count, also on a budget retry
+    BoundaryReduction<MeshType> boundary(ed_, &original_, bg, opt_.frozen.empty() ? nullptr : &opt_.frozen, bo);
     // Growing travel: cheap local cancellations everywhere first, so the long transports only
     // run for what is left. Sweeps: local removals only until they stop paying, then with
     // transports, until a sweep removes nothing (or a small share) more.
     for (int sweep = 0, travel = 0; go && sweep < opt_.maxSweeps; ++sweep) {
       const int before = state_.Irregular();
       go = Stage(rep, 10 + 70 * sweep / opt_.maxSweeps, "Cancelling triples and quadruples") && Sweep(rep, travel);
-      // A whole-mesh stage that runs once per sweep (after the per-vertex strategies) goes
-      // here, guarded like the others (GuardedEdit) so the running count stays true.
+      // Once per sweep, after the per-vertex strategies: the boundary stage.
+      if (go && opt_.boundaryStage && !state_.Done()) rep.boundaryStage.Add(boundary.Run());
       if (!go || state_.Done()) break;
       const int removed = before - state_.Irregular();
       if (removed * 100 <= before * opt_.minSweepGainPercent) {
@@ -203,6 +228,27 @@ class AutomaticReduction {
       ++h[d];
       irregular += d != 6;
     }
+  }
+
+  /// Why each irregular vertex left stays (leftover_reasons.h). Runs before compaction, so
+  /// the guard's refusals per vertex (ReductionState::UndoneAt) and the protected mask use the
+  /// run's indices; the report's vertex indices are then mapped to the compacted mesh's. One
+  /// pass, once per run.
+  void Explain(ReductionReport& rep) {
+    std::vector<int> undone(m_.vert.size(), 0);
+    for (auto& kv : state_.UndoneAt())
+      if (kv.first >= 0 && size_t(kv.first) < undone.size()) undone[size_t(kv.first)] = kv.second;
+    LeftoverOptions lo;
+    lo.reach = opt_.maxTravel;
+    lo.undone = &undone;
+    if (!opt_.frozen.empty()) lo.frozen = &opt_.frozen;
+    rep.leftovers = ExplainLeftovers(m_, lo);
+    std::vector<int> rank(m_.vert.size(), -1);
+    int next = 0;
+    for (size_t i = 0; i < m_.vert.size(); ++i)
+      if (!m_.vert[i].IsD()) rank[i] = next++;
+    auto remap = [&](int& v) { v = v >= 0 && size_t(v) < rank.size() ? rank[size_t(v)] : -1; };
+    for (LeftoverVertex& x : rep.leftovers.vertices) remap(x.vertex), remap(x.partner);
   }
 
   /// Run-time vertex indices -> indices after CompactEveryVector (which keeps the order of

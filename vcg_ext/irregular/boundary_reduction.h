@@ -152,6 +152,11 @@ struct BoundaryEditGuard {
   /// check sees usable triangles). Empty: local relaxation of the 2-ring, projected on the input,
   /// boundary vertices sliding along the input's boundary.
   std::function<void(const std::vector<int>& seeds)> relax;
+  /// Optional: called once after every begin, when the stage has decided: kept (the edit stays;
+  /// the driver may now commit it) or not (the stage has rolled back to its mark). A driver
+  /// that commits its journal must do so here, never in accept: the stage re-counts after
+  /// accept and may still roll back.
+  std::function<void(bool kept, const std::vector<int>& touched)> end;
 };
 
 /// What one call did. Counts are of kept edits unless named otherwise.
@@ -360,26 +365,27 @@ class BoundaryReduction {
       guard_.begin(around);
     }
     Attempt a;
+    auto drop = [&]() {
+      ed_.RollbackTo(cp);
+      if (guard_.end) guard_.end(false, a.touched);
+      return false;
+    };
     bool ok = Perform(best.plan, v, a);  // deterministic: the same edit as the probe
     if (ok) Count(a);
-    if (!ok || !Allowed(a, neutral)) {
-      ed_.RollbackTo(cp);
-      return false;
-    }
+    if (!ok || !Allowed(a, neutral)) return drop();
     if (!guard_.accept || !guard_.accept(a.touched)) {
-      ed_.RollbackTo(cp);
       vetoed_.insert(std::make_pair(v, best.plan));
       ++r.undone;
-      return false;
+      return drop();
     }
     // the guard relaxed: corner angles may have moved; count again on the relaxed mesh
     Count(a);
     if (!Allowed(a, neutral)) {
-      ed_.RollbackTo(cp);
       ++r.undone;
-      return false;
+      return drop();
     }
     Keep(a);
+    if (guard_.end) guard_.end(true, a.touched);
     if (a.plan.kind == kHop) {
       ++r.hops;
     } else if (a.plan.kind == kPair) {

@@ -32,7 +32,7 @@ namespace vcg_ext {
 namespace irregular {
 
 /// Why the guard refused an edit.
-enum class GuardVerdict { Kept = 0, Frozen = 1, Angle = 2, Hausdorff = 3 };
+enum class GuardVerdict { Kept = 0, Frozen = 1, Angle = 2, Hausdorff = 3, Boundary = 4 };
 
 template <class MeshType>
 class EditGuard {
@@ -74,6 +74,10 @@ class EditGuard {
       for (int x : KRing(m_, live, 1))
         if (state_.Frozen(x)) return GuardVerdict::Frozen;
     }
+    // More boundary irregular vertices than the input had (by the corner rule): the edit
+    // moved curvature into a regular stretch of boundary without cancelling any there.
+    if (state_.BoundaryIrregular() + state_.BoundaryDelta(touched) > state_.BoundaryLimit())
+      return GuardVerdict::Boundary;
     if (MinAngleAround(touched) < std::min(opt_.minAngleDeg, angleBefore)) return GuardVerdict::Angle;
     if (DeviationAround(touched) > budget_) return GuardVerdict::Hausdorff;
     return GuardVerdict::Kept;
@@ -334,17 +338,26 @@ class GuardedEdit {
 
   /// Keeps the edit (true) or undoes it (false).
   bool Accept(const std::vector<int>& touched) {
-    const GuardVerdict v = g_.Judge(touched, angleBefore_);
-    if (v != GuardVerdict::Kept) {
-      Undo();
-      (v == GuardVerdict::Frozen ? rep_.undoneFrozen : v == GuardVerdict::Angle ? rep_.undoneAngle
-                                                                                : rep_.undoneHausdorff)++;
-      g_.state().Undone(subjects_);
-      return false;
-    }
-    g_.state().Kept(touched);
+    if (!Judge(touched)) return false;
+    Keep(touched);
     return true;
   }
+  /// The guard's verdict alone. A refusal undoes the edit and records it; a pass commits
+  /// nothing yet, so a caller with checks of its own (boundary_reduction.h) can still roll
+  /// back to a mark taken before this edit began, and calls Keep only when it keeps the edit.
+  bool Judge(const std::vector<int>& touched) {
+    const GuardVerdict v = g_.Judge(touched, angleBefore_);
+    if (v == GuardVerdict::Kept) return true;
+    Undo();
+    (v == GuardVerdict::Frozen     ? rep_.undoneFrozen
+     : v == GuardVerdict::Angle    ? rep_.undoneAngle
+     : v == GuardVerdict::Boundary ? rep_.undoneBoundary
+                                   : rep_.undoneHausdorff)++;
+    g_.state().Undone(subjects_);
+    return false;
+  }
+  /// The edit is kept: stamps, running count, and (outermost edit) the journal's commit.
+  void Keep(const std::vector<int>& touched) { g_.state().Kept(touched); }
   void Undo() { g_.ed().RollbackTo(cp_); }
 
  private:

@@ -7,6 +7,8 @@
 #include <map>
 #include <vector>
 
+#include "boundary_reduction.h"
+#include "leftover_reasons.h"
 #include "relaxation.h"
 #include "result.h"
 
@@ -43,6 +45,10 @@ struct ReductionOptions {
                                             ///< or a global solve (eq. 5) followed by local sweeps
   int globalRelaxRounds = 3;            ///< default 3: solve-and-project rounds of the final global relaxation
   int finalLocalSweeps = 5;             ///< default 5: local sweeps over the whole mesh at the end (0: none)
+  bool boundaryStage = true;            ///< default true: once per sweep, interior irregular vertices near a
+                                        ///< boundary are moved into it or cancelled there (boundary_reduction.h)
+  BoundaryReductionOptions boundary;    ///< the boundary stage's settings (its boundaryLimit is set by the run:
+                                        ///< the input's boundary irregular count)
   double timeLimitSeconds = std::numeric_limits<double>::infinity();  ///< default: no limit (results then do
                                         ///< not depend on the machine's speed); else stop editing (keeping what was
                                         ///< done) after this long
@@ -67,6 +73,7 @@ struct ReductionReport {
   int undoneAngle = 0;        ///< edits the guard undid for a triangle under the angle bound
   int undoneHausdorff = 0;    ///< ... for leaving the input surface by more than the budget
   int undoneFrozen = 0;       ///< ... for touching the protected region
+  int undoneBoundary = 0;     ///< ... for raising the boundary irregular count above the input's
   /// Edits the guard undid (angle, Hausdorff, frozen), by the irregular vertex each tried to
   /// cancel, move or split: vertex index in the returned mesh -> count (vertices since deleted
   /// are left out). For the classification of the leftovers.
@@ -79,6 +86,11 @@ struct ReductionReport {
   int budgetRetries = 0;        ///< reruns with a tighter per-edit budget after overshooting
   bool allUndone = false;       ///< even the retries overshot: the mesh was given back unchanged
   double seconds = 0;
+  int boundaryIrregularBefore = 0, boundaryIrregularAfter = 0;  ///< boundary irregular vertices (corner rule,
+                                                                ///< topology.h); irregularBefore/After: interior
+  BoundaryReductionReport boundaryStage;  ///< what the boundary stage did, summed over the sweeps
+  LeftoverReport leftovers;  ///< why each irregular vertex left stays (leftover_reasons.h; boundary ones: "boundary");
+                             ///< its vertex indices are those of the returned (compacted) mesh
   explicit operator bool() const { return result.ok; }
 };
 

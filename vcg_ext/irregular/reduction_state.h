@@ -5,6 +5,7 @@
 // StartCount() and the snapshot are O(mesh), once per run.
 #pragma once
 
+#include <algorithm>
 #include <map>
 #include <vector>
 
@@ -26,6 +27,12 @@ class ReductionState {
 
   bool Frozen(int v) const { return v >= 0 && size_t(v) < opt_.frozen.size() && opt_.frozen[size_t(v)]; }
   bool IsInteriorIrregular(int v) { return ed_.IsLive(v) && !ed_.IsBoundary(v) && ed_.Valence(v) != 6; }
+  /// A boundary vertex whose valence differs from its regular one by the corner rule (topology.h).
+  bool IsBoundaryIrregular(int v) {
+    if (!ed_.IsLive(v)) return false;
+    VertexStar<MeshType> s = ed_.Star(v);
+    return s.boundary && s.Valence() != RegularValenceOf(s);
+  }
 
   // ------------------------------------------------------------ running count
   /// Interior irregular vertices now.
@@ -36,27 +43,60 @@ class ReductionState {
   /// One O(V) pass per run; afterwards UpdateCount keeps the count from the touched vertices.
   void StartCount() {
     isIrregular_.assign(m_.vert.size(), 0);
-    irregular_ = 0;
-    for (size_t i = 0; i < m_.vert.size(); ++i) irregular_ += isIrregular_[i] = IsInteriorIrregular(int(i));
+    isBoundaryIrregular_.assign(m_.vert.size(), 0);
+    irregular_ = boundaryIrregular_ = 0;
+    for (size_t i = 0; i < m_.vert.size(); ++i) {
+      irregular_ += isIrregular_[i] = IsInteriorIrregular(int(i));
+      boundaryIrregular_ += isBoundaryIrregular_[i] = IsBoundaryIrregular(int(i));
+    }
+    boundaryLimit_ = boundaryIrregular_;
+  }
+
+  /// Boundary irregular vertices now, and the most allowed: the input's count (issue 14: an
+  /// edit may move curvature into the boundary, never add boundary irregular vertices).
+  int BoundaryIrregular() const { return boundaryIrregular_; }
+  int BoundaryLimit() const { return boundaryLimit_; }
+  /// How the boundary irregular count would change if the edit that touched `touched` were
+  /// kept now (same region as UpdateCount; boundary vertices move only where an edit touched
+  /// them, relaxation keeps them fixed). O(touched).
+  int BoundaryDelta(const std::vector<int>& touched) {
+    int delta = 0;
+    for (int x : ChangedRegion(touched)) {
+      if (x < 0) continue;
+      const char before = size_t(x) < isBoundaryIrregular_.size() ? isBoundaryIrregular_[size_t(x)] : 0;
+      delta += int(IsBoundaryIrregular(x)) - int(before);
+    }
+    return delta;
   }
 
   /// After a kept edit: valences change only at the vertices an edit touched (those it
   /// deleted included) and their neighbours (a collapse re-points the faces around the vertex
   /// it removes, all in the ring of the survivor). O(touched).
   void UpdateCount(const std::vector<int>& touched) {
+    if (isIrregular_.size() < m_.vert.size()) isIrregular_.resize(m_.vert.size(), 0);
+    if (isBoundaryIrregular_.size() < m_.vert.size()) isBoundaryIrregular_.resize(m_.vert.size(), 0);
+    for (int x : ChangedRegion(touched)) {
+      if (x < 0 || size_t(x) >= isIrregular_.size()) continue;
+      const char now = IsInteriorIrregular(x), nowB = IsBoundaryIrregular(x);
+      irregular_ += int(now) - int(isIrregular_[size_t(x)]);
+      isIrregular_[size_t(x)] = now;
+      boundaryIrregular_ += int(nowB) - int(isBoundaryIrregular_[size_t(x)]);
+      isBoundaryIrregular_[size_t(x)] = nowB;
+    }
+  }
+
+  /// The touched vertices, their 1-ring and the vertices the current edit deleted (sorted,
+  /// unique): where valences (and boundary corners) can have changed.
+  std::vector<int> ChangedRegion(const std::vector<int>& touched) {
     std::vector<int> live;
     for (int t : touched)
       if (ed_.IsLive(t)) live.push_back(t);
     std::vector<int> around = KRing(m_, live, 1);
     around.insert(around.end(), touched.begin(), touched.end());
     around.insert(around.end(), removed_.begin(), removed_.end());
-    if (isIrregular_.size() < m_.vert.size()) isIrregular_.resize(m_.vert.size(), 0);
-    for (int x : around) {
-      if (x < 0 || size_t(x) >= isIrregular_.size()) continue;
-      const char now = IsInteriorIrregular(x);
-      irregular_ += int(now) - int(isIrregular_[size_t(x)]);
-      isIrregular_[size_t(x)] = now;
-    }
+    std::sort(around.begin(), around.end());
+    around.erase(std::unique(around.begin(), around.end()), around.end());
+    return around;
   }
 
   // ------------------------------------------------------------ what an edit touched
@@ -152,6 +192,9 @@ class ReductionState {
   int depth_ = 0;                   ///< guarded edits in progress
   std::vector<char> isIrregular_;   ///< per vertex: counted in irregular_
   int irregular_ = 0;               ///< interior irregular vertices now
+  std::vector<char> isBoundaryIrregular_;  ///< per vertex: counted in boundaryIrregular_
+  int boundaryIrregular_ = 0;       ///< boundary irregular vertices now (corner rule)
+  int boundaryLimit_ = 0;           ///< the input's boundary irregular count
   std::vector<int> removed_;        ///< vertices deleted by the current outermost edit
   long epoch_ = 0;                  ///< kept edits so far
   std::vector<long> editedAt_, failedAt_;  ///< per vertex: epoch of its last kept edit / failed attempt
