@@ -161,7 +161,8 @@ FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par
   ctx.Logf("Why the irregular vertices left stay: %s", rep.leftovers.Summary().c_str());
   if (rep.timeLimitReached) ctx.Warnf("Time limit reached: editing stopped early");
   if (rep.globalRelaxUndone) ctx.Logf("The final global relaxation lowered the smallest angle and was undone");
-  if (rep.finalSweepsUndone) ctx.Logf("The final local relaxation sweeps overshot the Hausdorff budget and were undone");
+  if (rep.finalSweepsUndone) ctx.Logf("The final local relaxation sweeps overshot the Hausdorff budget or lowered the smallest angle under "
+                                      "the bound, and were undone");
   const irr::ShapeMeasures shape = irr::MeasureShape(m);
   LogShape(ctx, "After", m);
   ctx.Logf("Hausdorff distance to the input: %.4f%% of the bounding box diagonal (budget %.3f%%)", rep.hausdorffPercent,

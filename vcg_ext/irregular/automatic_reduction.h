@@ -135,14 +135,22 @@ class AutomaticReduction {
     // The boundary stage (boundary_reduction.h): its edits pass the same guard; a kept one is
     // committed only once the stage has re-counted it (BoundaryEditGuard::end).
     std::unique_ptr<GuardedEdit<MeshType>> boundaryEdit;
+    std::vector<int> boundaryRelaxed;  // seeds relaxed between the steps of the current edit
     BoundaryEditGuard bg;
     bg.begin = [&](const std::vector<int>& around) {
       boundaryEdit.reset(new GuardedEdit<MeshType>(guard_, rep, around));
+      boundaryRelaxed.clear();
     };
-    bg.relax = [&](const std::vector<int>& seeds) { guard_.RelaxAround(seeds); };
+    bg.relax = [&](const std::vector<int>& seeds) {
+      guard_.RelaxAround(seeds);
+      boundaryRelaxed.insert(boundaryRelaxed.end(), seeds.begin(), seeds.end());
+    };
     bg.accept = [&](const std::vector<int>& touched) {
       guard_.RelaxAround(touched);
-      return boundaryEdit && boundaryEdit->Judge(touched);
+      // judged where anything moved: the touched vertices and every seed relaxed on the way
+      std::vector<int> judged(touched);
+      judged.insert(judged.end(), boundaryRelaxed.begin(), boundaryRelaxed.end());
+      return boundaryEdit && boundaryEdit->Judge(judged);
     };
     bg.end = [&](bool kept, const std::vector<int>& touched) {
       if (boundaryEdit && kept) boundaryEdit->Keep(touched);
@@ -268,8 +276,8 @@ class AutomaticReduction {
   /// The final relaxation of everything not frozen: global (eq. 5) if asked, kept only if it
   /// does not lower the smallest angle (the global solve equalizes lengths and angles on
   /// average and can squeeze a few triangles next to the remaining irregular vertices), then
-  /// local sweeps, which never lower the smallest angle around a vertex. Not journaled: the
-  /// whole-run undo restores the snapshot.
+  /// local sweeps, kept only if they keep the budget and the smallest angle (above the bound,
+  /// or as it was). Not journaled: the whole-run undo restores the snapshot.
   void FinalRelax() {
     std::vector<int> all;
     for (size_t i = 0; i < m_.vert.size(); ++i)
@@ -289,6 +297,7 @@ class AutomaticReduction {
     }
     std::vector<CoordType> beforeSweeps;
     for (int v : all) beforeSweeps.push_back(ed_.V(v)->P());
+    const double angleBeforeSweeps = MeasureShape(m_).minAngleDeg;
     RelaxOptions lo;
     lo.iterations = opt_.finalLocalSweeps;
     LocalRelax(m_, all, &original_, lo);
@@ -296,7 +305,13 @@ class AutomaticReduction {
       if (!f.IsD()) f.N() = vcg::TriangleNormal(f).Normalize();
     // The sweeps are not checked vertex by vertex against the Hausdorff budget (sharp creases
     // get rounded a little): measure once and keep the edited positions if they overshoot.
-    if (opt_.finalLocalSweeps > 0 && HausdorffPercent(m_, original_) > opt_.hausdorffBudgetPercent) {
+    // Nor are they checked against the angle bound (local relaxation refuses only moves that
+    // halve an angle): keep the positions before them if the smallest angle fell under the
+    // bound (or under what it was, if it was under the bound already).
+    const bool angleDropped =
+        MeasureShape(m_).minAngleDeg < std::min(opt_.minAngleDeg, angleBeforeSweeps) - 1e-9;
+    if (opt_.finalLocalSweeps > 0 &&
+        (angleDropped || HausdorffPercent(m_, original_) > opt_.hausdorffBudgetPercent)) {
       for (size_t i = 0; i < all.size(); ++i) ed_.V(all[i])->P() = beforeSweeps[i];
       for (auto& f : m_.face)
         if (!f.IsD()) f.N() = vcg::TriangleNormal(f).Normalize();

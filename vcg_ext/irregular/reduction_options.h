@@ -79,7 +79,8 @@ struct ReductionReport {
   /// are left out). For the classification of the leftovers.
   std::map<int, int> undoneAt;
   bool globalRelaxUndone = false;  ///< the final global solve lowered the smallest angle and was undone
-  bool finalSweepsUndone = false;  ///< the final local sweeps overshot the Hausdorff budget and were undone
+  bool finalSweepsUndone = false;  ///< the final local sweeps overshot the Hausdorff budget, or lowered the
+                                   ///< smallest angle under the bound, and were undone
   bool timeLimitReached = false;
   bool interrupted = false;
   double hausdorffPercent = 0;  ///< symmetric distance of the result to the input (HausdorffPercent)
