@@ -39,8 +39,12 @@ def check_result(out, t0, t1, budget=0.5, remeshed=False):
     assert out["remeshed"] == remeshed
     exact = fo.hausdorff_percent(t0, t1)
     assert exact <= budget * (1 + 1e-6), (exact, budget)
-    # the filter samples (its value is a lower bound, up to its single-precision noise)
-    assert out["hausdorff_percent"] <= exact * (1 + 1e-3) + 1e-6, (out["hausdorff_percent"], exact)
+    # Both are maxima over sample points of exact point-to-surface distances, so both are lower
+    # bounds of the true distance, at different points (the oracle samples more: vertices, edge
+    # midpoints, centroids, both ways): the filter's value is at most a few percent above the
+    # oracle's (mesh_with_border at a 0.1% budget: 1% above), and it keeps the budget itself.
+    assert out["hausdorff_percent"] <= budget * (1 + 1e-6), (out["hausdorff_percent"], budget)
+    assert out["hausdorff_percent"] <= exact * 1.03 + 1e-6, (out["hausdorff_percent"], exact)
     sh = fo.shape_measures(t1)
     assert out["min_angle_after"] == pytest.approx(sh["min_angle"], abs=1e-6)
     assert out["percent_below_30_after"] == pytest.approx(100 * sh["share_below_30"], abs=1e-9)
