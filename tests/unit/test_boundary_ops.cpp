@@ -906,3 +906,50 @@ TEST(BoundaryPredictions, ScratchRegionMapsIdsBothWays) {
   EXPECT_EQ(r.BackText("edge (" + std::to_string(sc) + ", " + std::to_string(r.n0) + ")"),
             "edge (" + std::to_string(c) + ", " + std::to_string(m.vert.size()) + ")");
 }
+
+// With no spare rings (scratchRings 0, a margin of 1) the first scratch often cuts through
+// what the operation reads: the runs must grow until two radii agree, and a prediction that
+// says exact must then agree with the operation field by field (one that is not exact may
+// differ; it is counted). Pair moves of several steps on the annulus (fixed seed).
+TEST(BoundaryPredictions, TightRegionGrowsAndStaysHonest) {
+  TMesh m;
+  test::HexPatchWithHole(m, 7, 2);
+  MeshEditor<TMesh> ed(m);
+  BoundaryOperations<TMesh> bo(ed);
+  bo.scratchRings = 0;
+  bo.scratchMargin = 1;
+  std::mt19937 rng(31);
+  int exact = 0, inexact = 0, applied = 0;
+  for (int it = 0; it < 400; ++it) {
+    const int v = int(rng() % m.vert.size());
+    if (!ed.IsLive(v) || !ed.IsBoundary(v)) continue;
+    VertexStar<TMesh> st = ed.Star(v);
+    BoundaryPairOutcome pred, real;
+    const auto snap = test::Snapshot(m);
+    if (rng() % 3 == 0) {
+      pred = bo.PredictGenerateBoundaryPairs(v);
+      ASSERT_EQ(test::Snapshot(m), snap);
+      real = bo.GenerateBoundaryPairs(v);
+    } else {
+      const int w = ed.Index(rng() % 2 ? st.neighbors.front() : st.neighbors.back());
+      const auto dir = rng() % 2 ? BoundaryPairDirection::TowardThree : BoundaryPairDirection::TowardFive;
+      const int steps = 1 + int(rng() % 6);
+      pred = bo.PredictMoveBoundaryPair(v, w, dir, steps);
+      ASSERT_EQ(test::Snapshot(m), snap);
+      real = bo.MoveBoundaryPair(v, w, dir, steps);
+    }
+    ASSERT_EQ(ed.journal().LoggedFaces() + ed.journal().LoggedVertices() > 0, bool(real));
+    if (pred.exact) {
+      ++exact;
+      ExpectSameOutcome(pred, real, "request " + std::to_string(it));
+    } else {
+      ++inexact;
+    }
+    applied += bool(real);
+    if (!real) ASSERT_EQ(test::Snapshot(m), snap);
+    ed.Commit();
+  }
+  EXPECT_GT(applied, 10);
+  EXPECT_GT(exact, 50);
+  std::printf("tight scratch: %d exact, %d inexact, %d applied\n", exact, inexact, applied);
+}
