@@ -57,6 +57,34 @@ int FlattenedCorner(TMesh& m) {
   return c;
 }
 
+/// Random boundary requests: makes the boundary at v irregular by a boundary split or a
+/// boundary-edge collapse to a random neighbour (nothing if v is interior), then commits.
+void SeedBoundaryIrregularity(TMesh& m, MeshEditor<TMesh>& ed, std::mt19937& rng, int v) {
+  VertexStar<TMesh> s = ed.Star(v);
+  if (!s.boundary) return;
+  const int a = ed.Index(s.neighbors[size_t(rng() % s.neighbors.size())]);
+  Result r = rng() % 2 ? ed.SplitBoundary(v, a) : ed.Collapse(v, a);
+  if (r) ExpectValid(m);
+  ed.Commit();
+}
+/// A neighbour of valence 7 in the star s (the last one), or -1.
+int Neighbour7(MeshEditor<TMesh>& ed, const VertexStar<TMesh>& s) {
+  int p7 = -1;
+  for (auto* n : s.neighbors)
+    if (ed.Valence(ed.Index(n)) == 7) p7 = ed.Index(n);
+  return p7;
+}
+/// Request `kind` (1 Absorb, 2 AbsorbPair, 3 MoveAlongBoundary, else GeneratePair), its dry
+/// run (predict) or the operation.
+BoundaryOutcome BoundaryOp(BoundaryOperations<TMesh>& bo, bool predict, int kind, int v, int p7, int side) {
+  switch (kind) {
+    case 1: return predict ? bo.PredictAbsorb(v) : bo.Absorb(v);
+    case 2: return predict ? bo.PredictAbsorbPair(v, p7) : bo.AbsorbPair(v, p7);
+    case 3: return predict ? bo.PredictMoveAlongBoundary(v, side) : bo.MoveAlongBoundary(v, side);
+    default: return predict ? bo.PredictGeneratePair(v, side) : bo.GeneratePair(v, side);
+  }
+}
+
 }  // namespace
 
 TEST(BoundaryOps, FlattenedCornerIsTheOnlyIrregularVertex) {
@@ -271,30 +299,14 @@ TEST(BoundaryOps, PredictionsAgreeOnRandomRequests) {
     BoundaryOutcome pred, real;
     auto snap = test::Snapshot(m);
     if (kind == 0) {
-      // seed irregularity: a boundary split or a boundary-edge collapse
-      if (!s.boundary) continue;
-      const int a = ed.Index(s.neighbors[size_t(rng() % s.neighbors.size())]);
-      Result r = rng() % 2 ? ed.SplitBoundary(v, a) : ed.Collapse(v, a);
-      if (r) ExpectValid(m);
-      ed.Commit();
+      SeedBoundaryIrregularity(m, ed, rng, v);
       continue;
     }
-    int p7 = -1;
-    for (auto* n : s.neighbors)
-      if (ed.Valence(ed.Index(n)) == 7) p7 = ed.Index(n);
-    switch (kind) {
-      case 1: pred = bo.PredictAbsorb(v); break;
-      case 2: pred = bo.PredictAbsorbPair(v, p7); break;
-      case 3: pred = bo.PredictMoveAlongBoundary(v, side); break;
-      default: pred = bo.PredictGeneratePair(v, side); break;
-    }
+    const int p7 = Neighbour7(ed, s);
+    pred = BoundaryOp(bo, true, kind, v, p7, side);
     ASSERT_EQ(test::Snapshot(m), snap) << "a prediction changed the mesh";
-    switch (kind) {
-      case 1: real = bo.Absorb(v); break;
-      case 2: real = bo.AbsorbPair(v, p7); break;
-      case 3: real = bo.MoveAlongBoundary(v, side); break;
-      default: real = bo.GeneratePair(v, side); break;
-    }
+    ASSERT_EQ(ed.journal().LoggedFaces() + ed.journal().LoggedVertices(), 0u) << "a prediction wrote the mesh";
+    real = BoundaryOp(bo, false, kind, v, p7, side);
     ASSERT_EQ(pred.result.ok, real.result.ok) << "kind " << kind << ": " << pred.result.reason << " / "
                                               << real.result.reason;
     EXPECT_EQ(pred.result.reason, real.result.reason);
@@ -615,6 +627,7 @@ TEST(BoundaryPairs, PredictionsAgreeOnRandomRequests) {
     if (rng() % 3 == 0) {
       pred = bo.PredictGenerateBoundaryPairs(v);
       ASSERT_EQ(test::Snapshot(m), snap);
+      ASSERT_EQ(ed.journal().LoggedFaces() + ed.journal().LoggedVertices(), 0u);
       real = bo.GenerateBoundaryPairs(v);
     } else {
       // a pair through v: v and a boundary neighbour
@@ -624,6 +637,7 @@ TEST(BoundaryPairs, PredictionsAgreeOnRandomRequests) {
       const int steps = 1 + int(rng() % 4);
       pred = bo.PredictMoveBoundaryPair(v, w, dir, steps);
       ASSERT_EQ(test::Snapshot(m), snap);
+      ASSERT_EQ(ed.journal().LoggedFaces() + ed.journal().LoggedVertices(), 0u);
       real = bo.MoveBoundaryPair(v, w, dir, steps);
     }
     ASSERT_EQ(pred.result.ok, real.result.ok) << pred.result.reason << " / " << real.result.reason;
@@ -736,4 +750,206 @@ TEST(BoundaryPairs, InteriorPairNextToTheBoundaryMovesParallelToIt) {
     ed.RollbackTo(cp);
   }
   EXPECT_EQ(along, 1) << "no atomic move takes the pair one step along the row";
+}
+
+// ---------------------------------------------------------------- dry runs on a scratch copy
+// (boundary_ops.h "Dry runs", scratch_region.h; issue 13, item 3)
+namespace {
+
+/// Every named field of two outcomes, description and exact verdict text included.
+void ExpectSameOutcome(const BoundaryOutcome& p, const BoundaryOutcome& r, const std::string& what) {
+  EXPECT_EQ(p.result.ok, r.result.ok) << what;
+  EXPECT_EQ(p.result.reason, r.result.reason) << what;
+  EXPECT_EQ(p.description, r.description) << what;
+  EXPECT_EQ(p.absorbed, r.absorbed) << what;
+  EXPECT_EQ(p.boundaryVertex, r.boundaryVertex) << what;
+  EXPECT_EQ(p.boundaryIrregular, r.boundaryIrregular) << what;
+  EXPECT_EQ(p.v5, r.v5) << what;
+  EXPECT_EQ(p.v7, r.v7) << what;
+  EXPECT_EQ(p.created, r.created) << what;
+  EXPECT_EQ(p.deleted, r.deleted) << what;
+  EXPECT_EQ(p.changes, r.changes) << what;
+}
+void ExpectSameOutcome(const BoundaryPairOutcome& p, const BoundaryPairOutcome& r, const std::string& what) {
+  EXPECT_EQ(p.result.ok, r.result.ok) << what;
+  EXPECT_EQ(p.result.reason, r.result.reason) << what;
+  EXPECT_EQ(p.description, r.description) << what;
+  EXPECT_EQ(p.v3, r.v3) << what;
+  EXPECT_EQ(p.v5, r.v5) << what;
+  EXPECT_EQ(p.other3, r.other3) << what;
+  EXPECT_EQ(p.other5, r.other5) << what;
+  EXPECT_EQ(p.survivor, r.survivor) << what;
+  EXPECT_EQ(p.cancelled, r.cancelled) << what;
+  EXPECT_EQ(p.steps, r.steps) << what;
+  EXPECT_EQ(p.created, r.created) << what;
+  EXPECT_EQ(p.deleted, r.deleted) << what;
+  EXPECT_EQ(p.changes, r.changes) << what;
+  EXPECT_EQ(p.boundaryIrregular, r.boundaryIrregular) << what;
+}
+
+}  // namespace
+
+// A prediction only reads the user's mesh: after a fresh Commit the editor's journal logs
+// nothing and the mesh is bit-identical (positions, flags, FF, VF); and what it says is, field
+// by field (reason and description texts too, in the user's ids), what the operation then
+// does. Random requests of all six boundary operations on an annulus whose boundary is made
+// irregular as it goes (fixed seed).
+TEST(BoundaryPredictions, ReadTheMeshOnlyAndAgreeFieldByField) {
+  TMesh m;
+  test::HexPatchWithHole(m, 7, 2);
+  MeshEditor<TMesh> ed(m);
+  BoundaryOperations<TMesh> bo(ed);
+  std::mt19937 rng(23);
+  int applied = 0, refused = 0, exact = 0, predicted = 0;
+  for (int it = 0; it < 700; ++it) {
+    const int v = int(rng() % m.vert.size());
+    if (!ed.IsLive(v)) continue;
+    VertexStar<TMesh> s = ed.Star(v);
+    const int kind = int(rng() % 8);
+    const int side = int(rng() % 2);
+    if (kind == 0) {
+      SeedBoundaryIrregularity(m, ed, rng, v);
+      continue;
+    }
+    const int p7 = Neighbour7(ed, s);
+    const int w = s.boundary ? ed.Index(side ? s.neighbors.front() : s.neighbors.back()) : -1;
+    const auto dir = rng() % 2 ? BoundaryPairDirection::TowardThree : BoundaryPairDirection::TowardFive;
+    const int steps = int(rng() % 5);  // 0 is refused
+    ed.Commit();
+    const auto snap = test::Snapshot(m);
+    const std::string what = "request " + std::to_string(it) + " kind " + std::to_string(kind) + " at " +
+                             std::to_string(v);
+    bool ok = false, ex = false;
+    auto noWrite = [&] {
+      ASSERT_EQ(ed.journal().LoggedFaces(), 0u) << what;
+      ASSERT_EQ(ed.journal().LoggedVertices(), 0u) << what;
+      ASSERT_EQ(test::Snapshot(m), snap) << what;
+    };
+    if (kind <= 4) {
+      const BoundaryOutcome pred = BoundaryOp(bo, true, kind, v, p7, side);
+      noWrite();
+      const BoundaryOutcome real = BoundaryOp(bo, false, kind, v, p7, side);
+      ExpectSameOutcome(pred, real, what);
+      ok = bool(real), ex = pred.exact;
+    } else {
+      BoundaryPairOutcome pred, real;
+      if (kind == 5) {
+        pred = bo.PredictGenerateBoundaryPairs(v);
+        noWrite();
+        real = bo.GenerateBoundaryPairs(v);
+      } else {
+        pred = bo.PredictMoveBoundaryPair(v, w, dir, steps);
+        noWrite();
+        real = bo.MoveBoundaryPair(v, w, dir, steps);
+      }
+      ExpectSameOutcome(pred, real, what);
+      ok = bool(real), ex = pred.exact;
+    }
+    ++predicted;
+    exact += ex;
+    if (ok) {
+      ++applied;
+      Result inv = CheckInvariants(m);
+      ASSERT_TRUE(inv.ok) << inv.reason << " after " << what;
+    } else {
+      ++refused;
+      ASSERT_EQ(test::Snapshot(m), snap) << what;
+    }
+    ed.Commit();
+  }
+  EXPECT_GT(applied, 20);
+  EXPECT_GT(refused, 20);
+  // every request here stays far from the cut border: each prediction is exact
+  EXPECT_EQ(exact, predicted);
+  std::printf("scratch predictions: %d (exact %d), applied %d, refused %d\n", predicted, exact, applied, refused);
+}
+
+// ScratchRegion (scratch_region.h) on its own: ids map both ways, created vertices map after
+// the user's last vertex, placeholders keep every live scratch id >= pad, and BackText renames
+// exactly the numbers that are scratch vertex ids.
+TEST(BoundaryPredictions, ScratchRegionMapsIdsBothWays) {
+  TMesh m;
+  test::HexPatch(m, 6);
+  const int c = At(m, 3, 3);
+  ScratchRegion<TMesh> r;
+  r.Extract(m, {c}, 1, 1, 1000);
+  EXPECT_EQ(r.pad, 1000);
+  EXPECT_EQ(r.userSize, int(m.vert.size()));
+  // the 1-ring's faces: its 2-ring's vertices, in the user's order
+  const std::vector<int> ring2 = KRing(m, std::vector<int>{c}, 2);
+  EXPECT_EQ(r.orig, ring2);
+  EXPECT_EQ(r.n0, 1000 + int(ring2.size()));
+  for (int u : ring2) {
+    const int sx = r.ToScratch(u);
+    ASSERT_GE(sx, 1000);
+    EXPECT_EQ(r.Back(sx), u);
+    EXPECT_FALSE(r.mesh.vert[size_t(sx)].IsD());
+    EXPECT_EQ(r.mesh.vert[size_t(sx)].P(), m.vert[size_t(u)].P());
+  }
+  for (int i = 0; i < 1000; ++i) ASSERT_TRUE(r.mesh.vert[size_t(i)].IsD());
+  EXPECT_EQ(r.ToScratch(At(m, 0, 0)), -1);
+  EXPECT_EQ(r.Back(r.n0 + 2), int(m.vert.size()) + 2);
+  // the 1-ring's whole stars were copied: same valence, same side, same star order
+  for (int u : KRing(m, std::vector<int>{c}, 1)) {
+    VertexStar<TMesh> us = StarOf<TMesh>(&m.vert[size_t(u)]);
+    VertexStar<TMesh> ss = StarOf<TMesh>(&r.mesh.vert[size_t(r.ToScratch(u))]);
+    EXPECT_EQ(ss.Valence(), us.Valence()) << u;
+    EXPECT_EQ(ss.boundary, us.boundary) << u;
+    for (size_t k = 0; k < us.neighbors.size() && k < ss.neighbors.size(); ++k)
+      EXPECT_EQ(r.Back(int(vcg::tri::Index(r.mesh, ss.neighbors[k]))), int(vcg::tri::Index(m, us.neighbors[k])));
+  }
+  EXPECT_FALSE(r.guard.empty());  // the cut border (2-ring) and its margin
+  vcg::tri::Allocator<TMesh>::AddVertices(r.mesh, 1);  // a vertex a run would create
+  const int sc = r.ToScratch(c);
+  EXPECT_EQ(r.BackText("vertex " + std::to_string(sc) + " has valence 6, step 3 of 999"),
+            "vertex " + std::to_string(c) + " has valence 6, step 3 of 999");
+  EXPECT_EQ(r.BackText("edge (" + std::to_string(sc) + ", " + std::to_string(r.n0) + ")"),
+            "edge (" + std::to_string(c) + ", " + std::to_string(m.vert.size()) + ")");
+}
+
+// With no spare rings (scratchRings 0, a margin of 1) the first scratch often cuts through
+// what the operation reads: the runs must grow until two radii agree, and a prediction that
+// says exact must then agree with the operation field by field (one that is not exact may
+// differ; it is counted). Pair moves of several steps on the annulus (fixed seed).
+TEST(BoundaryPredictions, TightRegionGrowsAndStaysHonest) {
+  TMesh m;
+  test::HexPatchWithHole(m, 7, 2);
+  MeshEditor<TMesh> ed(m);
+  BoundaryOperations<TMesh> bo(ed);
+  bo.scratchRings = 0;
+  bo.scratchMargin = 1;
+  std::mt19937 rng(31);
+  int exact = 0, inexact = 0, applied = 0;
+  for (int it = 0; it < 400; ++it) {
+    const int v = int(rng() % m.vert.size());
+    if (!ed.IsLive(v) || !ed.IsBoundary(v)) continue;
+    VertexStar<TMesh> st = ed.Star(v);
+    BoundaryPairOutcome pred, real;
+    const auto snap = test::Snapshot(m);
+    if (rng() % 3 == 0) {
+      pred = bo.PredictGenerateBoundaryPairs(v);
+      ASSERT_EQ(test::Snapshot(m), snap);
+      real = bo.GenerateBoundaryPairs(v);
+    } else {
+      const int w = ed.Index(rng() % 2 ? st.neighbors.front() : st.neighbors.back());
+      const auto dir = rng() % 2 ? BoundaryPairDirection::TowardThree : BoundaryPairDirection::TowardFive;
+      const int steps = 1 + int(rng() % 6);
+      pred = bo.PredictMoveBoundaryPair(v, w, dir, steps);
+      ASSERT_EQ(test::Snapshot(m), snap);
+      real = bo.MoveBoundaryPair(v, w, dir, steps);
+    }
+    ASSERT_EQ(ed.journal().LoggedFaces() + ed.journal().LoggedVertices() > 0, bool(real));
+    if (pred.exact) {
+      ++exact;
+      ExpectSameOutcome(pred, real, "request " + std::to_string(it));
+    } else {
+      ++inexact;
+    }
+    applied += bool(real);
+    if (!real) ASSERT_EQ(test::Snapshot(m), snap);
+    ed.Commit();
+  }
+  EXPECT_GT(applied, 10);
+  EXPECT_GT(exact, 50);
+  std::printf("tight scratch: %d exact, %d inexact, %d applied\n", exact, inexact, applied);
 }

@@ -82,11 +82,17 @@
 //                    adds one vertex and two faces at the boundary, the inverse of collapsing
 //                    an interior vertex into a boundary vertex of valence 3).
 //
-// Dry runs. Predict*() runs the operation under the journal and rolls it back (the result
-// is then exact by construction, and costs the same O(1) local work, O(steps) for a pair
-// move; a pure-topology plan like type_change.h's would also need a boundary-aware scratch
-// with collapses and ear splits, not written yet); the graph-level Can*
-// of graph_ops.h are the topological dry runs each step goes through.
+// Dry runs (issue 13, item 3). Predict*() copies the few rings the operation can reach - the
+// (steps + scratchRings)-ring of the vertices named - into a scratch mesh (scratch_region.h,
+// shared with composite_prediction.h), runs the real operation there with the same geometry
+// options and maps the outcome back to the user's ids (created vertices get the ids the real
+// operation would append, deleted ones their own; numbers in the reason and description that
+// are vertex ids are renamed too). The user's mesh is only read; its journal logs nothing.
+// The scratch's cut border looks like a mesh boundary to these operations, so a run is trusted
+// only when it agrees with a run on twice the radius and left the border's scratchMargin rings
+// untouched (exact = true); otherwise the largest of three radii is reported, exact = false.
+// Cost O((steps + scratchRings)^2) per prediction, never a pass over the whole mesh. The
+// graph-level Can* of graph_ops.h are the topological dry runs each step goes through.
 // All operations are all-or-nothing (journal.h). Outcomes name their vertices.
 #pragma once
 
@@ -97,6 +103,7 @@
 #include <vector>
 
 #include "graph_ops.h"
+#include "scratch_region.h"
 #include "topology.h"
 
 namespace vcg_ext {
@@ -114,6 +121,7 @@ struct BoundaryOutcome {
   int created = -1;        ///< vertex added by a boundary split, or -1
   int deleted = -1;        ///< vertex removed by a boundary-edge collapse, or -1
   std::map<int, int> changes;  ///< valence after the edit of every touched vertex (0: deleted)
+  bool exact = false;  ///< Predict*: two scratch radii agreed and the run stayed clear of the cut border (header)
   explicit operator bool() const { return result.ok; }
 };
 
@@ -134,6 +142,7 @@ struct BoundaryPairOutcome {
   std::vector<int> deleted;  ///< vertices removed by collapses (A), (C)
   std::map<int, int> changes;  ///< valence after the edit of every touched vertex (0: deleted)
   std::vector<int> boundaryIrregular;  ///< touched boundary vertices irregular afterwards
+  bool exact = false;  ///< Predict*: two scratch radii agreed and the run stayed clear of the cut border (header)
   explicit operator bool() const { return result.ok; }
 };
 
@@ -144,19 +153,40 @@ class BoundaryOperations {
 
   explicit BoundaryOperations(Editor& ed) : ed_(ed) {}
 
-  BoundaryOutcome PredictAbsorb(int v) { return Trial([&] { return Absorb(v); }); }
-  BoundaryOutcome PredictAbsorbPair(int p5, int p7) { return Trial([&] { return AbsorbPair(p5, p7); }); }
+  /// Dry runs (header): each one runs the operation on a scratch copy of the rings around the
+  /// vertices involved (scratch_region.h) and says what it would do, in the user's ids; the
+  /// user's mesh is only read and the editor's journal logs nothing.
+  BoundaryOutcome PredictAbsorb(int v) {
+    return OnScratch<BoundaryOutcome>({v}, {v}, 0, [&](BoundaryOperations& o, const Region* r) { return o.Absorb(To(r, v)); });
+  }
+  BoundaryOutcome PredictAbsorbPair(int p5, int p7) {
+    return OnScratch<BoundaryOutcome>({p5, p7}, {p5, p7}, 0, [&](BoundaryOperations& o, const Region* r) {
+      return o.AbsorbPair(To(r, p5), To(r, p7));
+    });
+  }
   BoundaryOutcome PredictMoveAlongBoundary(int b, int side) {
-    return Trial([&] { return MoveAlongBoundary(b, side); });
+    return OnScratch<BoundaryOutcome>({b}, {b}, 1, [&](BoundaryOperations& o, const Region* r) {
+      return o.MoveAlongBoundary(To(r, b), side);
+    });
   }
-  BoundaryOutcome PredictGeneratePair(int b, int side) { return Trial([&] { return GeneratePair(b, side); }); }
-
+  BoundaryOutcome PredictGeneratePair(int b, int side) {
+    return OnScratch<BoundaryOutcome>({b}, {b}, 0, [&](BoundaryOperations& o, const Region* r) {
+      return o.GeneratePair(To(r, b), side);
+    });
+  }
   BoundaryPairOutcome PredictMoveBoundaryPair(int a, int b, BoundaryPairDirection toward, int steps) {
-    auto cp = ed_.Mark();
-    BoundaryPairOutcome o = MoveBoundaryPair(a, b, toward, steps);
-    ed_.RollbackTo(cp);
-    return o;
+    // steps < 1 is refused before anything is edited: OnScratch then asks the user's editor
+    return OnScratch<BoundaryPairOutcome>(steps < 1 ? std::vector<int>{-1} : std::vector<int>{a, b}, {a, b}, steps,
+                                          [&](BoundaryOperations& o, const Region* r) {
+                                            return o.MoveBoundaryPair(To(r, a), To(r, b), toward, steps);
+                                          });
   }
+
+  /// Rings copied around the vertices of a dry run beyond its steps (the operations read and
+  /// edit at most two rings around each step; the rest keeps the cut border out of reach).
+  int scratchRings = 6;
+  /// Rings next to the scratch's cut border whose change makes a dry run inexact.
+  int scratchMargin = 2;
 
   /// Moves the boundary 5-7 pair (a, b) (header: two boundary vertices joined by a boundary
   /// edge, valences 3 and 5, both irregular by the boundary valence rule) `steps` steps along
@@ -212,10 +242,9 @@ class BoundaryOperations {
   }
 
   BoundaryPairOutcome PredictGenerateBoundaryPairs(int b) {
-    auto cp = ed_.Mark();
-    BoundaryPairOutcome o = GenerateBoundaryPairs(b);
-    ed_.RollbackTo(cp);
-    return o;
+    return OnScratch<BoundaryPairOutcome>({b}, {b}, 1, [&](BoundaryOperations& o, const Region* r) {
+      return o.GenerateBoundaryPairs(To(r, b));
+    });
   }
 
   /// Two boundary pairs of opposite sign from the regular boundary vertex b (header).
@@ -413,12 +442,92 @@ class BoundaryOperations {
     return out;
   }
 
-  template <class F>
-  BoundaryOutcome Trial(F f) {
-    auto cp = ed_.Mark();
-    BoundaryOutcome o = f();
-    ed_.RollbackTo(cp);
+  typedef ScratchRegion<MeshType> Region;
+  static int To(const Region* r, int v) { return r ? r->ToScratch(v) : v; }
+
+  /// Runs op on a scratch copy of the (steps + scratchRings)-ring of the seeds, then on twice
+  /// that radius (and four times, if needed) until two radii agree and the larger run left the
+  /// cut border's `scratchMargin` rings untouched (then exact = true), as composite_prediction.h
+  /// does. A request naming a vertex that is not live (or a seed -1) is refused by the
+  /// operation's first check, before any edit: it is answered by the user's editor directly.
+  template <class Outcome, class Op>
+  Outcome OnScratch(const std::vector<int>& seeds, const std::vector<int>& request, int steps, Op op) {
+    bool direct = false;
+    for (int v : seeds) direct = direct || !ed_.IsLive(v);
+    for (int v : request) direct = direct || !ed_.IsLive(v);
+    if (direct) {
+      Outcome o = op(*this, nullptr);
+      o.exact = true;
+      return o;
+    }
+    // message numbers below pad are counts and valences, at or above it vertex ids
+    int pad = 1000;
+    while (pad <= steps) pad *= 10;
+    int k = std::max(0, steps) + scratchRings;
+    bool touched = false;
+    Outcome prev = RunOnScratch<Outcome>(seeds, k, pad, op, touched);
+    for (int g = 0; g < 2; ++g) {
+      k *= 2;
+      bool touchedNext = false;
+      Outcome next = RunOnScratch<Outcome>(seeds, k, pad, op, touchedNext);
+      if (SameOutcome(prev, next) && !touchedNext) {
+        next.exact = true;
+        return next;
+      }
+      prev = next;
+    }
+    prev.exact = false;
+    return prev;
+  }
+
+  template <class Outcome, class Op>
+  Outcome RunOnScratch(const std::vector<int>& seeds, int k, int pad, Op& op, bool& touched) {
+    Region r;
+    r.Extract(ed_.Mesh(), seeds, k, scratchMargin, pad);
+    Editor sed(r.mesh, ed_.geometry());
+    BoundaryOperations so(sed);
+    so.scratchRings = scratchRings;
+    so.scratchMargin = scratchMargin;
+    const typename Region::GuardState before = r.Guard();
+    Outcome o = op(so, &r);
+    touched = !(before == r.Guard());
+    BackToUser(r, o);
     return o;
+  }
+
+  static std::map<int, int> BackKeys(const Region& r, const std::map<int, int>& ch) {
+    std::map<int, int> out;
+    for (auto& kv : ch) out[r.Back(kv.first)] = kv.second;
+    return out;
+  }
+  static void BackToUser(const Region& r, BoundaryOutcome& o) {
+    o.result.reason = r.BackText(o.result.reason);
+    o.description = r.BackText(o.description);
+    o.absorbed = r.Back(o.absorbed), o.boundaryVertex = r.Back(o.boundaryVertex);
+    o.boundaryIrregular = r.Back(o.boundaryIrregular);
+    o.v5 = r.Back(o.v5), o.v7 = r.Back(o.v7), o.created = r.Back(o.created), o.deleted = r.Back(o.deleted);
+    o.changes = BackKeys(r, o.changes);
+  }
+  static void BackToUser(const Region& r, BoundaryPairOutcome& o) {
+    o.result.reason = r.BackText(o.result.reason);
+    o.description = r.BackText(o.description);
+    o.v3 = r.Back(o.v3), o.v5 = r.Back(o.v5), o.survivor = r.Back(o.survivor);
+    o.other3 = r.Back(o.other3), o.other5 = r.Back(o.other5);
+    o.created = r.Back(o.created), o.deleted = r.Back(o.deleted);
+    o.changes = BackKeys(r, o.changes);
+    o.boundaryIrregular = r.Back(o.boundaryIrregular);
+  }
+  static bool SameOutcome(const BoundaryOutcome& a, const BoundaryOutcome& b) {
+    return a.result.ok == b.result.ok && a.result.reason == b.result.reason && a.description == b.description &&
+           a.absorbed == b.absorbed && a.boundaryVertex == b.boundaryVertex &&
+           a.boundaryIrregular == b.boundaryIrregular && a.v5 == b.v5 && a.v7 == b.v7 && a.created == b.created &&
+           a.deleted == b.deleted && a.changes == b.changes;
+  }
+  static bool SameOutcome(const BoundaryPairOutcome& a, const BoundaryPairOutcome& b) {
+    return a.result.ok == b.result.ok && a.result.reason == b.result.reason && a.description == b.description &&
+           a.v3 == b.v3 && a.v5 == b.v5 && a.survivor == b.survivor && a.cancelled == b.cancelled &&
+           a.steps == b.steps && a.other3 == b.other3 && a.other5 == b.other5 && a.created == b.created &&
+           a.deleted == b.deleted && a.changes == b.changes && a.boundaryIrregular == b.boundaryIrregular;
   }
 
   typedef typename MeshType::FaceType FaceType;

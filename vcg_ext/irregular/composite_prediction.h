@@ -7,6 +7,7 @@
 // small scratch mesh of the same type, runs the real composite operation there with the same
 // options, and maps the result back to the user's indices. The user's mesh is only read.
 //
+// The region copy is scratch_region.h's ScratchRegion (shared with boundary_ops.h's dry runs).
 // Fidelity: the scratch keeps the original's vertex and face order (so "the neighbour of
 // smallest index" and every tie-break are the same), its FF adjacency and, for every vertex
 // whose whole star is copied, its VF chain. Where the scratch outcome could differ from the
@@ -30,6 +31,7 @@
 #include <vector>
 
 #include "composite_ops.h"
+#include "scratch_region.h"
 
 namespace vcg_ext {
 namespace irregular {
@@ -141,13 +143,7 @@ class CompositePredictor {
     }
   };
 
-  struct Scratch {
-    MeshType mesh;
-    std::vector<int> orig;                  ///< scratch vertex -> original vertex
-    std::unordered_map<int, int> toScratch; ///< original vertex -> scratch vertex
-    std::vector<int> guard;                 ///< scratch vertices within `margin` of the cut border
-    int n0 = 0;
-  };
+  typedef ScratchRegion<MeshType> Scratch;
 
   bool Live(int i) const {
     return i >= 0 && size_t(i) < m_.vert.size() && !m_.vert[size_t(i)].IsD() && m_.vert[size_t(i)].cVFp();
@@ -194,126 +190,10 @@ class CompositePredictor {
     return p;
   }
 
-  /// Copies every face incident to the k-ring of `core` into a scratch mesh (vertex and face
-  /// order kept), rebuilds FF/VF there and restores the original VF chains of fully copied
-  /// vertices.
-  void Extract(const std::vector<int>& core, int k, Scratch& s) {
-    std::vector<int> live;
-    for (int c : core)
-      if (Live(c)) live.push_back(c);
-    const std::vector<int> inner = KRing(m_, live, k);
-    std::vector<int> faces;
-    for (int v : inner)
-      for (auto& c : StarOf<MeshType>(&m_.vert[size_t(v)]).corners) faces.push_back(int(vcg::tri::Index(m_, c.f)));
-    std::sort(faces.begin(), faces.end());
-    faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
-    std::vector<int> verts;
-    for (int f : faces)
-      for (int z = 0; z < 3; ++z) verts.push_back(int(vcg::tri::Index(m_, m_.face[size_t(f)].V(z))));
-    std::sort(verts.begin(), verts.end());
-    verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
-    s.orig = verts;
-    for (size_t i = 0; i < verts.size(); ++i) s.toScratch[verts[i]] = int(i);
-    std::unordered_map<int, int> faceTo;
-    for (size_t j = 0; j < faces.size(); ++j) faceTo[faces[j]] = int(j);
-    s.mesh.textures = m_.textures;
-    EnableLikeSource(s.mesh);
-    vcg::tri::Allocator<MeshType>::AddVertices(s.mesh, verts.size());
-    vcg::tri::Allocator<MeshType>::AddFaces(s.mesh, faces.size());
-    for (size_t i = 0; i < verts.size(); ++i) s.mesh.vert[i].ImportData(m_.vert[size_t(verts[i])]);
-    for (size_t j = 0; j < faces.size(); ++j) {
-      FaceType& src = m_.face[size_t(faces[j])];
-      FaceType& dst = s.mesh.face[j];
-      dst.ImportData(src);
-      for (int z = 0; z < 3; ++z) dst.V(z) = &s.mesh.vert[size_t(s.toScratch[int(vcg::tri::Index(m_, src.V(z)))])];
-    }
-    vcg::tri::UpdateTopology<MeshType>::FaceFace(s.mesh);
-    vcg::tri::UpdateTopology<MeshType>::VertexFace(s.mesh);
-    // Vertices whose whole star was copied keep the original VF chain (the order stars are
-    // walked in); the others form the cut border.
-    std::vector<int> border;
-    for (size_t i = 0; i < verts.size(); ++i) {
-      VertexType& ov = m_.vert[size_t(verts[i])];
-      bool whole = true;
-      for (auto& c : StarOf<MeshType>(&ov).corners) whole = whole && faceTo.count(int(vcg::tri::Index(m_, c.f)));
-      if (!whole) {
-        border.push_back(int(i));
-        continue;
-      }
-      VertexType& sv = s.mesh.vert[i];
-      sv.VFp() = &s.mesh.face[size_t(faceTo[int(vcg::tri::Index(m_, ov.cVFp()))])];
-      sv.VFi() = ov.cVFi();
-      for (auto& c : StarOf<MeshType>(&ov).corners) {
-        FaceType& of = *c.f;
-        FaceType& sf = s.mesh.face[size_t(faceTo[int(vcg::tri::Index(m_, &of))])];
-        FaceType* nf = of.cVFp(c.z);
-        sf.VFp(c.z) = nf ? &s.mesh.face[size_t(faceTo[int(vcg::tri::Index(m_, nf))])] : nullptr;
-        sf.VFi(c.z) = of.cVFi(c.z);
-      }
-    }
-    s.guard = KRing(s.mesh, border, margin);
-    s.n0 = int(s.mesh.vert.size());
-  }
+  /// The scratch copy of the k-ring of `core` (scratch_region.h).
+  void Extract(const std::vector<int>& core, int k, Scratch& s) { s.Extract(m_, core, k, margin); }
 
-// Optional (Ocf) components, as in MeshLab's CMeshO: the scratch enables what the user's mesh
-// has enabled, so adjacency exists and attributes are copied. No-ops for static components.
-#define FI_MIRROR_OCF(Name)                                                                        \
-  template <class C>                                                                               \
-  static auto Mirror##Name(C& src, C& dst, int)->decltype(src.Is##Name##Enabled(), void()) {      \
-    if (src.Is##Name##Enabled()) dst.Enable##Name();                                               \
-  }                                                                                                \
-  template <class C>                                                                               \
-  static void Mirror##Name(C&, C&, long) {}
-  FI_MIRROR_OCF(FFAdjacency)
-  FI_MIRROR_OCF(VFAdjacency)
-  FI_MIRROR_OCF(Mark)
-  FI_MIRROR_OCF(TexCoord)
-  FI_MIRROR_OCF(WedgeTexCoord)
-  FI_MIRROR_OCF(Color)
-  FI_MIRROR_OCF(Quality)
-  FI_MIRROR_OCF(Normal)
-#undef FI_MIRROR_OCF
-
-  void EnableLikeSource(MeshType& s) {
-    MirrorVFAdjacency(m_.vert, s.vert, 0);
-    MirrorMark(m_.vert, s.vert, 0);
-    MirrorTexCoord(m_.vert, s.vert, 0);
-    MirrorColor(m_.vert, s.vert, 0);
-    MirrorQuality(m_.vert, s.vert, 0);
-    MirrorNormal(m_.vert, s.vert, 0);
-    MirrorFFAdjacency(m_.face, s.face, 0);
-    MirrorVFAdjacency(m_.face, s.face, 0);
-    MirrorMark(m_.face, s.face, 0);
-    MirrorWedgeTexCoord(m_.face, s.face, 0);
-    MirrorColor(m_.face, s.face, 0);
-    MirrorQuality(m_.face, s.face, 0);
-    MirrorNormal(m_.face, s.face, 0);
-  }
-
-  struct GuardState {
-    std::vector<CoordType> p;
-    std::vector<int> valence;
-    std::vector<char> dead;
-  };
-  GuardState Guard(Scratch& s) {
-    GuardState g;
-    for (int v : s.guard) {
-      VertexType& x = s.mesh.vert[size_t(v)];
-      g.p.push_back(x.P());
-      g.dead.push_back(x.IsD() ? 1 : 0);
-      g.valence.push_back(x.IsD() ? 0 : StarOf<MeshType>(&x).Valence());
-    }
-    return g;
-  }
-  static bool SameGuard(const GuardState& a, const GuardState& b) {
-    return a.p == b.p && a.valence == b.valence && a.dead == b.dead;
-  }
-
-  int Back(const Scratch& s, int i) const {
-    if (i < 0) return -1;
-    if (i < s.n0) return s.orig[size_t(i)];
-    return int(m_.vert.size()) + (i - s.n0);
-  }
+  int Back(const Scratch& s, int i) const { return s.Back(i); }
 
   template <class Op>
   CompositePrediction RunOnce(const std::vector<int>& core, int k, Op& op, bool& touchedBorder) {
@@ -321,11 +201,11 @@ class CompositePredictor {
     Extract(core, k, s);
     MeshEditor<MeshType> ed(s.mesh, geom_);
     Ops co(ed, original_, opt_);
-    const GuardState before = Guard(s);
+    const typename Scratch::GuardState before = s.Guard();
     std::vector<char> liveBefore(s.mesh.vert.size());
     for (size_t i = 0; i < s.mesh.vert.size(); ++i) liveBefore[i] = ed.IsLive(int(i));
     CompositeOutcome o = op(co, Map{&s.toScratch});
-    touchedBorder = !SameGuard(before, Guard(s));
+    touchedBorder = !(before == s.Guard());
     CompositePrediction p;
     p.result = o.result;
     p.regionVertices = s.n0;
