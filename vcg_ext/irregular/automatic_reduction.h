@@ -251,22 +251,26 @@ class AutomaticReduction {
     lo.undone = &undone;
     if (!opt_.frozen.empty()) lo.frozen = &opt_.frozen;
     rep.leftovers = ExplainLeftovers(m_, lo);
+    const std::vector<int> rank = CompactionRank();
+    auto remap = [&](int& v) { v = v >= 0 && size_t(v) < rank.size() ? rank[size_t(v)] : -1; };
+    for (LeftoverVertex& x : rep.leftovers.vertices) remap(x.vertex), remap(x.partner);
+  }
+
+  /// Per run-time vertex index, its index after CompactEveryVector (which keeps the order of
+  /// the live vertices); -1 for deleted vertices. O(V), once per run.
+  std::vector<int> CompactionRank() const {
     std::vector<int> rank(m_.vert.size(), -1);
     int next = 0;
     for (size_t i = 0; i < m_.vert.size(); ++i)
       if (!m_.vert[i].IsD()) rank[i] = next++;
-    auto remap = [&](int& v) { v = v >= 0 && size_t(v) < rank.size() ? rank[size_t(v)] : -1; };
-    for (LeftoverVertex& x : rep.leftovers.vertices) remap(x.vertex), remap(x.partner);
+    return rank;
   }
 
   /// Run-time vertex indices -> indices after CompactEveryVector (which keeps the order of
   /// the live vertices); deleted vertices are dropped.
   std::map<int, int> CompactedIndices(const std::map<int, int>& byIndex) {
     std::map<int, int> out;
-    std::vector<int> rank(m_.vert.size(), -1);
-    int next = 0;
-    for (size_t i = 0; i < m_.vert.size(); ++i)
-      if (!m_.vert[i].IsD()) rank[i] = next++;
+    const std::vector<int> rank = CompactionRank();
     for (auto& kv : byIndex)
       if (kv.first >= 0 && size_t(kv.first) < rank.size() && rank[size_t(kv.first)] >= 0)
         out[rank[size_t(kv.first)]] += kv.second;
