@@ -124,6 +124,12 @@ class FilterContext {
   virtual void Log(LogLevel level, const std::string& line) = 0;
   /// vcg's progress callback, or null.
   virtual bool (*Progress())(const int, const char*) = 0;
+  /// A new, empty mesh layer in the document, named `label`, for filters that write a second
+  /// mesh (the Pattern filter's panels). Null when the host cannot add layers.
+  virtual CMeshO* NewLayer(const std::string& label) {
+    (void)label;
+    return nullptr;
+  }
 
   void Logf(const char* fmt, ...) __attribute__((format(printf, 2, 3)));
   void Warnf(const char* fmt, ...) __attribute__((format(printf, 2, 3)));
