@@ -91,6 +91,7 @@ class EditSession {
   explicit EditSession(MeshType& m, EditSessionOptions opt = EditSessionOptions())
       : m_(m), opt_(opt), original_(m), grid_(m) {
     opt_.undoDepth = std::max(1, opt_.undoDepth);
+    Reserve();
   }
 
   // --- picking
@@ -223,6 +224,7 @@ class EditSession {
     CompositeOutcome o = Ops(*e.ed, &original_, CompositeOpt()).MovePair(lead_, partner_, k, 1);
     if (!o) return Say(Result::Fail(Str("direction ", k + 1, " refused: ", o.result.reason)));
     const int l0 = lead_, p0 = partner_;
+    e.action = Action::Step, e.k = k;
     lead_ = o.lead;
     partner_ = o.partner;
     Push(std::move(e), before, PairRegion(lead_, partner_));
@@ -275,6 +277,7 @@ class EditSession {
     lead_ = e.lead;
     partner_ = e.partner;
     touched_ = e.touched;
+    redo_.push_back(Redoable{e.action, e.k, e.lead, e.partner});
     undo_.pop_back();
     Invalidate();
     grid_.Refresh(touched_);
@@ -282,6 +285,24 @@ class EditSession {
     return true;
   }
   int UndoDepth() const { return int(undo_.size()); }
+  /// Redoes the last undone step or cancellation (the mesh is bit-identical to the state it
+  /// ran on, so running it again gives the same result); false when there is none, or when
+  /// the pair was picked again or another edit came in between (those forget the redo list).
+  bool Redo() {
+    if (redo_.empty() || redo_.back().lead != lead_ || redo_.back().partner != partner_) {
+      redo_.clear();
+      Say(Result::Fail("nothing to redo"));
+      return false;
+    }
+    const Redoable r = redo_.back();
+    redo_.pop_back();
+    std::vector<Redoable> rest;
+    rest.swap(redo_);
+    Result done = r.action == Action::Step ? Step(r.k) : r.action == Action::Triple ? CancelTriple() : CancelQuadruple();
+    if (done) redo_.swap(rest);
+    return done.ok;
+  }
+  int RedoDepth() const { return int(redo_.size()); }
   /// The last refusal or success message, for the viewport and the log.
   const std::string& Message() const { return message_; }
   /// The vertices the last step, cancellation or undo may have changed (positions, valences;
@@ -297,7 +318,11 @@ class EditSession {
 
  private:
   /// One undo entry: the journal of one step, and the pair before it.
+  /// What an entry did, to redo it: a step in direction k, or a cancellation.
+  enum class Action { Step, Triple, Quadruple };
   struct Entry {
+    Action action = Action::Step;
+    int k = -1;
     std::unique_ptr<Editor> ed;
     typename Editor::Checkpoint start;
     int lead = -1, partner = -1;
@@ -419,6 +444,7 @@ class EditSession {
   }
 
   Entry Begin() {
+    Reserve();
     Entry e;
     e.ed.reset(new Editor(m_));
     e.start = e.ed->Mark();
@@ -435,10 +461,29 @@ class EditSession {
     std::sort(touched_.begin(), touched_.end());
     touched_.erase(std::unique(touched_.begin(), touched_.end()), touched_.end());
     e.touched = touched_;
+    redo_.clear();
     undo_.push_back(std::move(e));
     while (int(undo_.size()) > opt_.undoDepth) undo_.pop_front();
     Invalidate();
     grid_.Refresh(touched_);
+  }
+
+  /// Keeps spare capacity in m.vert and m.face, so that a split during a step never
+  /// reallocates them: vcg's Allocator would then walk every face to fix its pointers, O(F) in
+  /// the middle of a step. When fewer than 1024 vertices (2048 faces) are spare, the vectors
+  /// grow by max(4096, size / 8) through the Allocator (which fixes the pointers once) and the
+  /// added elements are truncated again by a journal rollback: the mesh is as it was, with
+  /// room. The only O(mesh) work of a session after its start, once per thousands of
+  /// created vertices.
+  void Reserve() {
+    const bool vert = m_.vert.capacity() - m_.vert.size() < 1024, face = m_.face.capacity() - m_.face.size() < 2048;
+    if (!vert && !face) return;
+    EditJournal<MeshType> j(m_);
+    const typename EditJournal<MeshType>::Checkpoint cp = j.Mark();
+    const size_t hv = std::max<size_t>(4096, m_.vert.size() / 8), hf = std::max<size_t>(8192, m_.face.size() / 8);
+    if (vert) vcg::tri::Allocator<MeshType>::AddVertices(m_, hv);
+    if (face) vcg::tri::Allocator<MeshType>::AddFaces(m_, hf);
+    j.RollbackTo(cp);
   }
 
   /// Direction k tried on the mesh and rolled back (see the header).
@@ -446,6 +491,7 @@ class EditSession {
     EditDirection<CoordType> d;
     d.k = k;
     d.from = d.to = m_.vert[size_t(lead_)].P();
+    Reserve();
     Editor ed(m_);
     const typename Editor::Checkpoint cp = ed.Mark();
     CompositeOutcome o = Ops(ed, &original_, CompositeOpt()).MovePair(lead_, partner_, k, 1);
@@ -474,6 +520,7 @@ class EditSession {
         before.insert(before.end(), r.begin(), r.end());
       }
     Entry e = Begin();
+    e.action = quadruple ? Action::Quadruple : Action::Triple;
     Ops co(*e.ed, &original_, CompositeOpt());
     CompositeOutcome o = quadruple ? co.CancelQuadruple(group) : co.CancelTriple(group);
     if (!o) return o.result;
@@ -499,6 +546,11 @@ class EditSession {
   int lead_ = -1, partner_ = -1;
   std::string message_;
   std::deque<Entry> undo_;
+  struct Redoable {
+    Action action;
+    int k, lead, partner;
+  };
+  std::vector<Redoable> redo_;
   std::vector<int> touched_;
   std::vector<EditDirection<CoordType>> dirs_;
   bool dirsValid_ = false;
