@@ -30,7 +30,8 @@
 // atomic_ops.h (0..5 counter-clockwise around the v5 from the v7, fig. 6); for any other pair
 // the lead moves toward its neighbour k counted counter-clockwise from its neighbour of
 // smallest index (sec. 7.1.1, fig. 10). The GUI never needs to know which: it draws the arrow
-// from `from` to `to` and maps arrow keys and drags through DirectionToward.
+// from `from` to `to` and maps arrow keys and drags through DirectionToward. Messages number
+// the directions 1..6 (k + 1), like the keys 1-6 of the tool.
 //
 // Preconditions: FF and VF adjacency up to date on a manifold, consistently oriented mesh
 // (as for MeshEditor); the mesh is edited only through this session while it lives.
@@ -218,7 +219,7 @@ class EditSession {
   /// follows the moved vertices. Refused, with the mesh bit-identical, with Message() saying why.
   Result Step(int k) {
     if (!HasPair()) return Say(NoPair());
-    if (k < 0 || k > 5) return Say(Result::Fail(Str("direction ", k, " does not exist: the directions are 0 to 5")));
+    if (k < 0 || k > 5) return Say(Result::Fail(Str("direction ", k + 1, " does not exist: the directions are 1 to 6")));
     Entry e = Begin();
     std::vector<int> before = PairRegion(lead_, partner_);
     CompositeOutcome o = Ops(*e.ed, &original_, CompositeOpt()).MovePair(lead_, partner_, k, 1);
