@@ -162,6 +162,16 @@ TEST(EditSession, DirectionUnderTheCursorWithAnOrthographicProjection) {
     EXPECT_LT(gap, 95) << i;
   }
   EXPECT_EQ(s.DirectionToward(Ortho, vcg::Point2d(0, 0)), -1);
+  EXPECT_TRUE(s.DirectionsKnown());
+  EXPECT_TRUE(s.Direction(3).to == dirs[3].to);
+  EXPECT_FALSE(s.Direction(6).accepted);
+  s.ClearPair();
+  EXPECT_FALSE(s.DirectionsKnown());
+  EXPECT_TRUE(s.Directions().empty());
+  EXPECT_EQ(s.DirectionToward(Ortho, vcg::Point2d(1, 0)), -1);
+  EXPECT_FALSE(s.Direction(0).accepted);
+  ASSERT_TRUE(s.PickVertex(q.pair5).ok);
+  EXPECT_FALSE(s.DirectionsKnown());
   // a point target: the step that brings the lead closest
   const P3 far = dirs[2].from + (dirs[2].to - dirs[2].from) * 10;
   EXPECT_EQ(s.DirectionTowardPoint(far), 2);

@@ -173,12 +173,25 @@ class EditSession {
   /// mesh or the pair changes; computing them costs six trial steps (see the header).
   std::vector<EditDirection<CoordType>> Directions() {
     if (!HasPair()) return {};
-    if (dirsValid_) return dirs_;
-    dirs_.clear();
-    for (int k = 0; k < 6; ++k) dirs_.push_back(Trial(k));
-    dirsValid_ = true;
+    for (int k = 0; k < 6; ++k) Direction(k);
     return dirs_;
   }
+  /// Direction k alone (0..5), its dry run cached like Directions(): a GUI can spread the six
+  /// trials over idle ticks when one step is expensive (a pair far apart, sec. 7.1.1).
+  /// Without a pair, or for k outside 0..5: refused, with the reason.
+  EditDirection<CoordType> Direction(int k) {
+    if (!HasPair() || k < 0 || k > 5) {
+      EditDirection<CoordType> d;
+      d.k = k;
+      d.reason = HasPair() ? Str("direction ", k + 1, " does not exist: the directions are 1 to 6") : NoPair().reason;
+      return d;
+    }
+    if (dirs_.size() != 6) dirs_.assign(6, EditDirection<CoordType>()), known_.assign(6, 0);
+    if (!known_[size_t(k)]) dirs_[size_t(k)] = Trial(k), known_[size_t(k)] = 1;
+    return dirs_[size_t(k)];
+  }
+  /// True when Directions() would return without running a trial.
+  bool DirectionsKnown() const { return HasPair() && known_.size() == 6 && std::count(known_.begin(), known_.end(), 1) == 6; }
   /// The accepted direction whose drawn arrow (projected by `project`) is closest in angle to
   /// the screen vector `screen` (arrow keys, mouse drag); -1 if none (no pair, nothing
   /// accepted, a zero screen vector). Ties: the smaller k.
@@ -362,7 +375,7 @@ class EditSession {
   void EnsureGrid() {
     if (!grid_.Built()) grid_.Build(opt_.pickRadius);
   }
-  void Invalidate() { dirsValid_ = false; }
+  void Invalidate() { known_.assign(6, 0); }
 
   CompositeOptions CompositeOpt() const {
     CompositeOptions co;
@@ -554,7 +567,7 @@ class EditSession {
   std::vector<Redoable> redo_;
   std::vector<int> touched_;
   std::vector<EditDirection<CoordType>> dirs_;
-  bool dirsValid_ = false;
+  std::vector<char> known_ = std::vector<char>(6, 0);  ///< dirs_[k] holds the current state's trial
 };
 
 }  // namespace irregular
