@@ -103,13 +103,23 @@ int main(int argc, char** argv) {
     auto a = Clock::now();
     Result sr = s.Step(kk);
     auto b = Clock::now();
-    s.Directions();
+    double slowest = 0;
+    int slowK = -1;
+    for (int d = 0; d < 6; ++d) {  // = Directions(), one trial at a time to name the slow one
+      auto x = Clock::now();
+      s.Direction(d);
+      const double t = Ms(x, Clock::now());
+      if (t > slowest) slowest = t, slowK = d;
+    }
     auto c = Clock::now();
     if (!sr) {
       std::printf("step %d refused: %s\n", i, s.Message().c_str());
       break;
     }
     ++done;
+    if (Ms(a, c) > 4)
+      std::printf("  slow key press %d: step %.2f ms, directions %.2f ms (slowest: direction %d, %.2f ms, %s)\n", i,
+                  Ms(a, b), Ms(b, c), slowK + 1, slowest, s.Direction(slowK).accepted ? "accepted" : "refused");
     step.Add(Ms(a, b));
     dirs.Add(Ms(b, c));
     press.Add(Ms(a, c));
