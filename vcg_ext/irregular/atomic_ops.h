@@ -696,14 +696,6 @@ class AtomicOperations {
   }
 
  private:
-  template <class... Args>
-  static std::string Str(const Args&... args) {
-    std::ostringstream o;
-    using expand = int[];
-    (void)expand{0, ((o << args), 0)...};
-    return o.str();
-  }
-
   static AtomicOutcome& Refuse(AtomicOutcome& out, const std::string& why) {
     out.result = Result::Fail(why);
     return out;

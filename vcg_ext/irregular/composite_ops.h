@@ -424,14 +424,6 @@ class CompositeOperations {
   }
 
  private:
-  template <class... Args>
-  static std::string Str(const Args&... args) {
-    std::ostringstream o;
-    using expand = int[];
-    (void)expand{0, ((o << args), 0)...};
-    return o.str();
-  }
-
   CompositeOutcome& Fail(CompositeOutcome& out, typename Editor::Checkpoint cp, const std::string& why) {
     ed_.RollbackTo(cp);
     out.result = Result::Fail(why);
@@ -636,6 +628,12 @@ class CompositeOperations {
     return Result::Ok();
   }
 
+  /// A pipeline reading's score that realises the step: the 5-7 pair keeps its shape
+  /// (translation), or the partner moves by the mirror image (5-5, 7-7).
+  static bool GoodEnough(bool translate, double score) {
+    return translate ? score >= kShapeKept + 0.5 : score >= 0.5;
+  }
+
   /// One step of MovePair (sec. 7.1.1): tries both readings of the lead's flip and keeps the
   /// one whose cancellation best realises the translation (5-7) or the mirrored step (5-5,
   /// 7-7). On failure the mesh is as before.
@@ -659,6 +657,15 @@ class CompositeOperations {
       int l = lead, p = partner;
       double sc = 0;
       Result r = RunPipeline(scratch, flips[i], x, l, p, before, leadFrom, partnerFrom, translate, &sc);
+      // The last reading tried, when it wins and is good enough, is kept as it is: re-running
+      // it from the same state would rebuild the identical mesh (rollback restores every
+      // element and vector size, so even the new vertices' ids repeat).
+      if (r && i + 1 == flips.size() && sc > bestScore && GoodEnough(translate, sc)) {
+        out.atomicSteps += scratch.atomicSteps;
+        out.log += scratch.log;
+        lead = l, partner = p;
+        return r;
+      }
       ed_.RollbackTo(cp);
       if (!r) {
         if (why.empty()) why = r.reason;
@@ -667,11 +674,11 @@ class CompositeOperations {
       if (sc > bestScore) bestScore = sc, bestFlip = int(i);
     }
     if (bestFlip < 0) return Result::Fail(why);
-    if (translate && bestScore < kShapeKept + 0.5)
+    if (translate && !GoodEnough(translate, bestScore))
       return Result::Fail(Str("no cancellation of the generated pair next to vertex ", partner,
                               " moves it by the lead's step: the 5-7 pair would not keep its relative position "
                               "(sec. 7.1.1); try another direction or lead with the other vertex"));
-    if (!translate && bestScore < 0.5)
+    if (!translate && !GoodEnough(translate, bestScore))
       return Result::Fail(Str("no cancellation next to vertex ", partner,
                               " moves it by the mirror image of the lead's step (sec. 7.1.2: a 5-5 or 7-7 pair moves "
                               "symmetrically); try another direction"));

@@ -351,13 +351,6 @@ class EditSession {
     std::vector<int> touched;
   };
 
-  template <class... Args>
-  static std::string Str(const Args&... args) {
-    std::ostringstream o;
-    using expand = int[];
-    (void)expand{0, ((o << args), 0)...};
-    return o.str();
-  }
   Result Say(Result r, const std::string& okText = std::string()) {
     message_ = r ? okText : r.reason;
     return r.ok ? Result::Ok() : r;

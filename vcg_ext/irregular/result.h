@@ -1,5 +1,6 @@
 // filter_irregular: the result of an operation that can be refused.
 #pragma once
+#include <sstream>
 #include <string>
 #include <utility>
 
@@ -22,6 +23,16 @@ struct Result {
   }
   explicit operator bool() const { return ok; }
 };
+
+/// Concatenates its arguments as an ostream would print them: the refusal texts' builder
+/// ("vertices ", v5, " and ", v7, " are not adjacent").
+template <class... Args>
+std::string Str(const Args&... args) {
+  std::ostringstream o;
+  using expand = int[];
+  (void)expand{0, ((o << args), 0)...};
+  return o.str();
+}
 
 }  // namespace irregular
 }  // namespace vcg_ext

@@ -61,16 +61,6 @@
 namespace vcg_ext {
 namespace irregular {
 
-namespace type_change_detail {
-template <class... Args>
-std::string Text(const Args&... args) {
-  std::ostringstream o;
-  using expand = int[];
-  (void)expand{0, ((o << args), 0)...};
-  return o.str();
-}
-}  // namespace type_change_detail
-
 
 /// What a type split or aggregation does (or would do).
 struct TypeChangeOutcome {
@@ -249,7 +239,7 @@ class TopologyScratch {
  private:
   template <class... Args>
   static Result Fail(const Args&... args) {
-    return Result::Fail(type_change_detail::Text(args...));
+    return Result::Fail(Str(args...));
   }
   void Load(int v) {
     if (ring_.count(v)) return;
@@ -329,10 +319,6 @@ class TypeChange {
   }
 
  private:
-  template <class... Args>
-  static std::string Str(const Args&... args) {
-    return type_change_detail::Text(args...);
-  }
   static TypeChangeOutcome Refusal(const std::string& why) {
     TypeChangeOutcome o;
     o.status = Result::Fail(why);
