@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <vcg/complex/algorithms/clean.h>
+#include <vcg/complex/algorithms/stat.h>
 #include <vcg/complex/append.h>
 #include <vcg_ext/irregular/mesh_checks.h>
 #include <vcg_ext/irregular/pattern_panels.h>
@@ -126,6 +127,16 @@ TEST(PatternPanels, InsetAndExtrudePositionsAreExact) {
   EXPECT_EQ(bottom, 7);
   EXPECT_EQ(centre, 2);
   ExpectCleanShells(out, true, 2);
+  // extruded into the surface: the top at z = -0.25, still closed shells with outward normals
+  o.extrude = -0.25;
+  TMesh in;
+  ASSERT_TRUE(BuildPanels(m, P, o, in).ok);
+  int below = 0;
+  for (auto& v : in.vert) below += std::fabs(v.P()[2] + 0.25) < 1e-6 ? 1 : 0;
+  EXPECT_EQ(size_t(below) * 2, in.vert.size());
+  ExpectCleanShells(in, true, 2);
+  EXPECT_GT(vcg::tri::Stat<TMesh>::ComputeMeshVolume(in), 0);
+  EXPECT_GT(vcg::tri::Stat<TMesh>::ComputeMeshVolume(out), 0);
 }
 
 // Width-one strips around a regular torus (the faces of one row of quads): every panel is an

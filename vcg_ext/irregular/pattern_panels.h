@@ -11,9 +11,10 @@
 //      the mean edge length of m (on a flat region; on a curved one, to first order). Vertices
 //      inside the region stay. The inset must stay below the region's inradius, about 0.28
 //      edge lengths for a single triangle, or the copy folds;
-//   3. extrude (opt.extrude > 0): the top is the inset copy moved by h = opt.extrude x mean
-//      edge length along each vertex normal, the bottom is the inset copy reversed, and each
-//      outline edge gets a side wall of two triangles. Each panel is then a closed, manifold,
+//   3. extrude (opt.extrude != 0): the top is the inset copy moved by h = opt.extrude x mean
+//      edge length along each vertex normal (into the surface when negative), the bottom is the
+//      inset copy reversed, and each outline edge gets a side wall of two triangles (all
+//      reversed when h < 0, so that normals point out of the shell). Each panel is then a closed, manifold,
 //      consistently oriented shell (outward normals), one per connected component of the
 //      region; a region without outline (a whole closed component) gives two shells, top and
 //      bottom. With extrude = 0 the panel is the inset copy alone, an open surface.
@@ -48,7 +49,7 @@ namespace irregular {
 
 struct PanelOptions {
   double inset = 0.15;    ///< inset of each panel's outline, as a fraction of the mean edge length
-  double extrude = 0.25;  ///< extrusion along the normal, as a fraction of the mean edge length (0: flat)
+  double extrude = 0.25;  ///< extrusion along the normal, as a fraction of the mean edge length (0: flat; < 0: inwards)
 };
 
 struct PanelReport {
@@ -107,7 +108,7 @@ PanelReport BuildPanels(const MeshType& cm, const PatternLabels& labels, const P
   };
   if (!labels.ok) return fail("the pattern failed: " + labels.reason);
   if (labels.faceRegion.size() != m.face.size()) return fail("the pattern does not match the mesh (face count)");
-  if (opt.inset < 0 || opt.extrude < 0) return fail("inset and extrude must not be negative");
+  if (opt.inset < 0) return fail("the inset must not be negative");
   const int regions = int(labels.regionKind.size());
   std::vector<std::vector<int>> facesOf(size_t(std::max(regions, 0)));
   for (size_t i = 0; i < m.face.size(); ++i) {
@@ -166,7 +167,8 @@ PanelReport BuildPanels(const MeshType& cm, const PatternLabels& labels, const P
     const int base = int(pos.size());
     for (int v = 0; v < nv; ++v) pos.push_back(q[size_t(v)] + n[size_t(v)] * S(height));
     for (const auto& c : R.corners) tris.push_back({base + c[0], base + c[1], base + c[2]});
-    if (height > 0) {
+    if (height != 0) {
+      const size_t first = tris.size() - R.corners.size();
       const int bot = int(pos.size());
       for (int v = 0; v < nv; ++v) pos.push_back(q[size_t(v)]);
       for (const auto& c : R.corners) tris.push_back({bot + c[0], bot + c[2], bot + c[1]});
@@ -177,6 +179,10 @@ PanelReport BuildPanels(const MeshType& cm, const PatternLabels& labels, const P
           tris.push_back({base + b, base + a, bot + a});
           tris.push_back({base + b, bot + a, bot + b});
         }
+      // extruded into the surface (height < 0): the top lies below the bottom, so the shell is
+      // turned inside out; reverse it to keep the normals outwards
+      if (height < 0)
+        for (size_t t = first; t < tris.size(); ++t) std::swap(tris[t][1], tris[t][2]);
     }
     colors.resize(tris.size(), col);
   }
