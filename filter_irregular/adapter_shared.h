@@ -72,6 +72,8 @@ int DataMaskOf(unsigned components) {
   if (components & kVertMark) mask |= MeshModelT::MM_VERTMARK;
   if (components & kFaceMark) mask |= MeshModelT::MM_FACEMARK;
   if (components & kFaceFlag) mask |= MeshModelT::MM_FACEFLAG;
+  if (components & kFaceColor) mask |= MeshModelT::MM_FACECOLOR;
+  if (components & kFaceQuality) mask |= MeshModelT::MM_FACEQUALITY;
   return mask;
 }
 
