@@ -7,8 +7,10 @@ import os
 
 import numpy as np
 import pymeshlab
+import pytest
 
-from fi_pm import EXAMPLES, apply, load
+import fi_oracle as fo
+from fi_pm import EXAMPLES, apply, load, refuse, tri
 
 PATTERN = "compute_color_irregular_pattern"
 
@@ -64,6 +66,55 @@ def test_star_panels_are_a_new_layer_of_closed_shells():
 def test_no_panels_no_layer():
     ms = icosphere()
     apply(ms, PATTERN, pattern="Stars", starradius=3, panels=False)
+    assert ms.mesh_number() == 1
+
+
+def isolated_v5(m, radius):
+    """Independent count (the numpy oracle's valences and boundary rule): interior v5 with no
+    other irregular vertex within `radius` edges, by breadth-first search on the edge graph."""
+    e, _ = fo.unique_edges(m)
+    adj = [[] for _ in range(len(m.vertices))]
+    for a, b in e:
+        adj[a].append(b)
+        adj[b].append(a)
+    val, irr, bnd = fo.valences(m), fo.irregular_mask(m), fo.boundary_vertex_mask(m)
+    seeds = np.nonzero((val == 5) & ~bnd & fo.referenced_mask(m))[0]
+    isolated = 0
+    for s in seeds:
+        seen, frontier, alone = {int(s)}, [int(s)], True
+        for _ in range(radius):
+            nxt = []
+            for v in frontier:
+                for w in adj[v]:
+                    if w not in seen:
+                        seen.add(w)
+                        nxt.append(w)
+                        alone = alone and not irr[w]
+            frontier = nxt
+        isolated += alone
+    return len(seeds), isolated
+
+
+@pytest.mark.parametrize("name", ["camel.off", "holes.off", "dino.off"])
+def test_star_seeds_and_isolation_match_an_independent_count(name):
+    ms = load(name)
+    m = tri(ms)
+    for radius in (2, 3):
+        out = apply(ms, PATTERN, pattern="Stars", starradius=radius, panels=False)
+        assert (out["star_seeds"], out["isolated_star_seeds"]) == isolated_v5(m, radius), radius
+        # one region id per face in face quality, dense
+        region = np.rint(ms.current_mesh().face_scalar_array()).astype(np.int64)
+        assert np.array_equal(np.unique(region), np.arange(out["regions"]))
+
+
+def test_refused_pattern_adds_no_layer():
+    """A regular torus has no v5 to seed stars: refused before any panel, the MeshSet unchanged
+    (no new layer)."""
+    ex = load_example()
+    ms = pymeshlab.MeshSet()
+    v, f = ex.regular_torus(12, 12)
+    ms.add_mesh(pymeshlab.Mesh(vertex_matrix=v, face_matrix=f))
+    refuse(ms, PATTERN, "no interior v5", pattern="Stars", starradius=3, panels=True)
     assert ms.mesh_number() == 1
 
 
