@@ -181,3 +181,35 @@ TEST(PatternPanels, PanelsTakeTheRegionColour) {
   EXPECT_EQ(blue, out.fn - red);
   for (auto& f : out.face) EXPECT_TRUE(f.C() == palette[0] || f.C() == palette[1]);
 }
+
+// On a curved surface the inset outline is put back on the surface: with no extrusion every
+// panel vertex lies on the input mesh (a point moved in the tangent plane alone would be off
+// it by about inset^2 / 2 on the unit sphere, 1e-4 here).
+TEST(PatternPanels, InsetVerticesStayOnACurvedSurface) {
+  TMesh m;
+  test::Icosphere(m, 3);
+  StarOptions so;
+  so.radius = 2;
+  PatternLabels P = ComputeStars(m, so);
+  ASSERT_TRUE(P.ok) << P.reason;
+  PanelOptions o;
+  o.extrude = 0;
+  TMesh out;
+  PanelReport rep = BuildPanels(m, P, o, out);
+  ASSERT_TRUE(rep.ok) << rep.reason;
+  double worst = 0;
+  int moved = 0;
+  for (auto& v : out.vert) {
+    double best = 1e9;
+    for (auto& f : m.face) {
+      float d;
+      vcg::Point3f c;
+      vcg::TrianglePointDistance(vcg::Triangle3<float>(f.P(0), f.P(1), f.P(2)), v.P(), d, c);
+      best = std::min(best, double(d));
+    }
+    worst = std::max(worst, best);
+    moved += std::fabs(v.P().Norm() - 1) > 1e-6 ? 1 : 0;  // off the vertices' sphere: inset
+  }
+  EXPECT_LT(worst, 1e-5);
+  EXPECT_GT(moved, 100);
+}

@@ -8,8 +8,9 @@
 //      faces (normal: area-weighted mean of their normals), along the bisector of its two
 //      outline edges, by inset / sin(half the region's angle there) (a miter, capped at 5
 //      times the inset), so that both outline edges move inwards by exactly inset = opt.inset x
-//      the mean edge length of m (on a flat region; on a curved one, to first order). Vertices
-//      inside the region stay. The inset must stay below the region's inradius, about 0.28
+//      the mean edge length of m (on a flat region; on a curved one, to first order), then back
+//      onto the surface: to the closest point of its region faces. Vertices inside the region
+//      stay. The inset must stay below the region's inradius, about 0.28
 //      edge lengths for a single triangle, or the copy folds;
 //   3. extrude (opt.extrude != 0): the top is the inset copy moved by h = opt.extrude x mean
 //      edge length along each vertex normal (into the surface when negative), the bottom is the
@@ -35,11 +36,14 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
 #include <vcg/complex/complex.h>
 #include <vcg/complex/algorithms/update/bounding.h>
+#include <vcg/space/distance3.h>
+#include <vcg/space/triangle3.h>
 
 #include "pattern_result.h"
 #include "region_outline.h"
@@ -94,6 +98,24 @@ double MeanEdgeLength(const MeshType& cm) {
   return n ? sum / n : 0;
 }
 
+/// The point of the faces `fan` (indices into R.faces, corners at positions p) closest to x:
+/// puts an inset vertex back on the surface (step 2). O(fan size).
+template <class C>
+C OnFan(const C& x, const std::vector<size_t>& fan, const RegionOutline& R, const std::vector<C>& p) {
+  typedef typename C::ScalarType S;
+  C best = x;
+  S bestDist = std::numeric_limits<S>::max();
+  for (size_t i : fan) {
+    const auto& c = R.corners[i];
+    const vcg::Triangle3<S> t(p[size_t(c[0])], p[size_t(c[1])], p[size_t(c[2])]);
+    S d;
+    C y;
+    vcg::TrianglePointDistance(t, x, d, y);
+    if (d < bestDist) bestDist = d, best = y;
+  }
+  return best;
+}
+
 /// Writes into `out` (cleared first) one panel per region of `labels` over `m`. `m` is only read.
 template <class MeshType>
 PanelReport BuildPanels(const MeshType& cm, const PatternLabels& labels, const PanelOptions& opt, MeshType& out) {
@@ -143,6 +165,10 @@ PanelReport BuildPanels(const MeshType& cm, const PatternLabels& labels, const P
       for (int z = 0; z < 3; ++z) n[size_t(c[size_t(z)])] += fn;
     }
     for (C& x : n) x.Normalize();
+    std::vector<std::vector<size_t>> fansAt((size_t(nv)));  // region faces at each outline vertex
+    for (size_t i = 0; i < R.faces.size(); ++i)
+      for (int z = 0; z < 3; ++z)
+        if (R.onOutline[size_t(R.corners[i][size_t(z)])]) fansAt[size_t(R.corners[i][size_t(z)])].push_back(i);
     std::vector<C> q = p;  // inset positions
     for (const auto& loop : R.loops) {
       const size_t L = loop.size();
@@ -161,7 +187,7 @@ PanelReport BuildPanels(const MeshType& cm, const PatternLabels& labels, const P
           dir.Normalize();
           len = delta / std::max(double(dir.dot(in1)), 0.2);
         }
-        q[size_t(b)] = p[size_t(b)] + dir * S(len);
+        q[size_t(b)] = OnFan(p[size_t(b)] + dir * S(len), fansAt[size_t(b)], R, p);
       }
     }
     const int base = int(pos.size());
