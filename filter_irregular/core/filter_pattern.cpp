@@ -152,17 +152,18 @@ FilterOutcome ApplyPattern(FilterContext& ctx, const ParamValues& par) {
   out.SetInt("strip_width_1", widthCount(1, 1));
   out.SetInt("strip_width_2", widthCount(2, 2));
   out.SetInt("strip_width_3_or_more", widthCount(3, 1 << 30));
-  out.SetVector("strip_width_histogram", AsVector(s.stripWidthHistogram));
   out.SetInt("cells", s.cells);
   out.SetInt("non_hexagonal_cells", s.nonHexagonalCells);
-  out.SetVector("cell_sides_histogram", AsVector(s.cellSidesHistogram));
   out.SetInt("conflict_regions", s.conflictRegions);
   out.SetInt("conflict_faces", s.conflictFaces);
   out.SetInt("star_seeds", s.starSeeds);
   out.SetInt("isolated_star_seeds", s.isolatedStarSeeds);
   out.SetInt("circles", s.circles);
   out.SetInt("panels", panels.panels);
+  // vectors last, the long one at the end: meshlabserver's log cuts lines at 4095 characters
+  out.SetVector("cell_sides_histogram", AsVector(s.cellSidesHistogram));
   out.SetVector("panel_sides_histogram", AsVector(panels.panelSidesHistogram));
+  out.SetVector("strip_width_histogram", AsVector(s.stripWidthHistogram));
   return out;
 }
 

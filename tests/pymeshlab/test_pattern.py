@@ -153,8 +153,9 @@ def test_three_peaks_before_and_after_reduction():
     res = before_after(ms)
     report("three_peaks", res)
     (s0, _), (s1, _) = res
-    assert wide(s1) < wide(s0)
+    assert wide(s1) < wide(s0) and s1["strip_width_2"] < s0["strip_width_2"]
     assert s1["conflict_faces"] < s0["conflict_faces"]
+    assert s1["non_hexagonal_cells"] < s0["non_hexagonal_cells"]
     assert s1["strip_width_1"] / s1["strips"] > s0["strip_width_1"] / s0["strips"]
 
 
@@ -166,8 +167,9 @@ def test_bunny_remeshed_before_and_after_reduction():
     res = before_after(ms)
     report("bunny", res)
     (s0, _), (s1, _) = res
-    assert wide(s1) < wide(s0)
+    assert wide(s1) < wide(s0) and s1["strip_width_2"] < s0["strip_width_2"]
     assert s1["conflict_faces"] < s0["conflict_faces"]
+    assert s1["non_hexagonal_cells"] < s0["non_hexagonal_cells"]
 
 
 @pytest.mark.parametrize("direction", [0, 1, 2])
@@ -212,3 +214,37 @@ def test_refusals_leave_the_mesh_unchanged():
     refuse(ms, PATTERN, "'direction'", direction=3)
     refuse(ms, PATTERN, "'period'", period=0)
     refuse(ms, PATTERN, "'panelInset'", panelinset=0.9)
+
+
+def regular_torus(n, k, R=3.0, r=1.0):
+    """test_mesh.h's RegularTorus: vertex (i, j) = i * k + j, faces (a, b, c), (a, c, d)."""
+    i, j = np.meshgrid(np.arange(n), np.arange(k), indexing="ij")
+    a, b = 2 * np.pi * i / n, 2 * np.pi * j / k
+    v = np.stack([(R + r * np.cos(b)) * np.cos(a), (R + r * np.cos(b)) * np.sin(a), r * np.sin(b)], -1).reshape(-1, 3)
+    faces = []
+    for ii in range(n):
+        for jj in range(k):
+            A, B = ii * k + jj, ((ii + 1) % n) * k + jj
+            C, D = ((ii + 1) % n) * k + (jj + 1) % k, ii * k + (jj + 1) % k
+            faces += [(A, B, C), (A, C, D)]
+    return v, np.array(faces)
+
+
+@pytest.mark.parametrize("direction,strips", [(0, 6), (1, 12), (2, 6)])
+def test_regular_torus_exact(direction, strips):
+    """A regular 12 x 6 torus: every strip a single row of width one (k, n or gcd(n, k) strips
+    for the three directions), alternating, 24 hexagonal cells, no conflict; the zebra is the same."""
+    from fi_pm import from_arrays
+    v, f = regular_torus(12, 6)
+    ms = from_arrays(v, f)
+    out = pattern(ms, direction=direction)
+    region, kind = check_against_written(ms, out)
+    assert out["strips"] == strips and out["strip_width_1"] == strips
+    assert out["strip_width_2"] == 0 and out["strip_width_3_or_more"] == 0
+    assert (out["cells"], out["non_hexagonal_cells"], out["conflict_faces"]) == (24, 0, 0)
+    assert np.bincount(region).tolist() == [144 // strips] * strips
+    pairs = face_adjacency(f)
+    across = region[pairs[:, 0]] != region[pairs[:, 1]]
+    assert (kind[pairs[across, 0]] != kind[pairs[across, 1]]).all()
+    z = pattern(ms, pattern="Zebra", direction=direction)
+    assert np.array_equal(written(ms)[0], region) and z["strips"] == strips

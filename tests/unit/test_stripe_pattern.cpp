@@ -192,9 +192,21 @@ TEST(StripePattern, FiveSevenPairsMakeWideStripsOnlyAlongTheirLines) {
         for (int z = 0; z < 3; ++z) close |= near2.count(Vi(m, int(f), z)) > 0;
         EXPECT_TRUE(close) << "conflict face " << f << " far from the pairs";
       }
-    PatternLabels z = ComputeZebra(m, o);
+    StripeField fz;
+    PatternLabels z = ComputeZebra(m, o, &fz);
     EXPECT_EQ(z.measures.conflictFaces, 0);
     for (size_t f = 0; f < m.face.size(); ++f) EXPECT_LT(z.faceRegion[f], z.measures.strips);
+    // the zebra's seams are on its cut tree and touch the pairs: the turns of a 5-7 pair cancel,
+    // so no seam runs between the two pairs
+    int seams = 0;
+    for (size_t e = 0; e < fz.inconsistent.size(); ++e)
+      if (fz.inconsistent[e]) {
+        ++seams;
+        EXPECT_TRUE(fz.cutTree[e]);
+        const int f = int(e / 3), i = int(e % 3);
+        EXPECT_TRUE(irregular.count(Vi(m, f, i)) || irregular.count(Vi(m, f, (i + 1) % 3))) << "seam edge " << e;
+      }
+    EXPECT_GT(seams, 0);
   }
   EXPECT_TRUE(test::Snapshot(m) == before) << "the patterns must not change the mesh";
 }
@@ -228,7 +240,10 @@ TEST(StripePattern, FiveValentCentreGivesAPentagonAndSeams) {
   ASSERT_TRUE(z.ok);
   EXPECT_EQ(z.measures.conflictFaces, 0);
   int seams = 0;
-  for (char c : fz.inconsistent) seams += c;
+  for (size_t e = 0; e < fz.inconsistent.size(); ++e) {
+    seams += fz.inconsistent[e];
+    if (fz.inconsistent[e]) EXPECT_TRUE(fz.cutTree[e]) << "the zebra's seams lie on the cut tree";
+  }
   EXPECT_GT(seams, 0);
   // every face is in a strip; across a seam the direction is turned (the carried direction
   // differs from the neighbour's own), everywhere else it agrees

@@ -23,9 +23,13 @@
 //    line stops at an irregular vertex (Fig. 1 top), and so on.
 //  * Stripes (ComputeStripes): every face of an inconsistent edge is a Conflict face (the design
 //    cannot keep one direction family there); conflict regions are their connected components.
-//  * Zebra (ComputeZebra, Fig. 13): the same flood, but the seams are accepted: the strips on
-//    their two sides follow the lattice, turned by 60 degrees, and the seam only separates them.
-//    No face is in conflict.
+//  * Zebra (ComputeZebra, Fig. 13): the seams are placed at the irregular vertices and
+//    accepted. A cut tree joins every interior irregular vertex to the boundary (closed mesh: to
+//    the first irregular vertex) along breadth-first paths in the vertex graph (MarkCutTree); the
+//    flood crosses a tree edge only where nothing else reaches, so the direction's 60-degree
+//    turns show up on the tree, i.e. between singularities (a 5-7 pair: on its own edge, since
+//    its two turns cancel). The strips on both sides of a seam follow the lattice, turned by 60
+//    degrees; the seam only separates them. No face is in conflict.
 //  * Alternation: strips adjacent across a complete line form the strip graph; breadth-first
 //    levels from the seed's strip (then from each unreached strip) give StripeA where
 //    level % period == 0, StripeB otherwise (period 2: A B A B; an odd cycle of strips shows as
@@ -72,6 +76,7 @@ struct StripeField {
   std::vector<int> lineOf;         ///< per face edge: edge line id (root), -1 if not a line edge
   std::vector<char> lineComplete;  ///< per line id (indexed like face edges): complete line
   std::vector<int> stripWidth;     ///< per region id (strips only): width
+  std::vector<char> cutTree;       ///< per face edge: on the zebra's cut tree (empty for stripes)
 };
 
 namespace stripe_detail {
@@ -181,6 +186,56 @@ bool StepCCW(const Indexer<MeshType>& ix, int& f, int& z) {
   return true;
 }
 
+/// The zebra's cut tree: breadth-first over the vertex graph from the boundary (or, on a closed
+/// mesh, from the first interior irregular vertex), then every interior irregular vertex joined
+/// to the tree along its parents. Marks both sides (3f + i) of the tree's edges. O(F).
+template <class MeshType>
+void MarkCutTree(const MeshType& m, const std::vector<int>& valence, const std::vector<char>& boundary,
+                 std::vector<char>& cut) {
+  Indexer<MeshType> ix{m};
+  const int nv = int(m.vert.size()), nf = int(m.face.size());
+  std::vector<int> start(size_t(nv) + 1, 0), to, key;  // adjacency (CSR) with the face edge
+  for (int f = 0; f < nf; ++f)
+    if (!m.face[size_t(f)].IsD())
+      for (int i = 0; i < 3; ++i) start[size_t(ix.Vx(f, i)) + 1] += 1, start[size_t(ix.Vx(f, (i + 1) % 3)) + 1] += 1;
+  for (int v = 0; v < nv; ++v) start[size_t(v) + 1] += start[size_t(v)];
+  to.resize(size_t(start[size_t(nv)]));
+  key.resize(to.size());
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for (int f = 0; f < nf; ++f) {
+    if (m.face[size_t(f)].IsD()) continue;
+    for (int i = 0; i < 3; ++i) {
+      const int a = ix.Vx(f, i), b = ix.Vx(f, (i + 1) % 3);
+      to[size_t(fill[size_t(a)])] = b, key[size_t(fill[size_t(a)]++)] = 3 * f + i;
+      to[size_t(fill[size_t(b)])] = a, key[size_t(fill[size_t(b)]++)] = 3 * f + i;
+    }
+  }
+  auto irregular = [&](int v) { return !boundary[size_t(v)] && valence[size_t(v)] > 0 && valence[size_t(v)] != 6; };
+  std::vector<int> parent(size_t(nv), -1), parentKey(size_t(nv), -1), order;
+  std::vector<char> inTree(size_t(nv), 0);
+  for (int v = 0; v < nv; ++v)
+    if (boundary[size_t(v)]) inTree[size_t(v)] = 1, order.push_back(v);
+  for (int v = 0; v < nv && order.empty(); ++v)
+    if (irregular(v)) inTree[size_t(v)] = 1, order.push_back(v);
+  std::vector<char> seen(inTree);
+  for (size_t h = 0; h < order.size(); ++h)
+    for (int k = start[size_t(order[h])]; k < start[size_t(order[h]) + 1]; ++k)
+      if (!seen[size_t(to[size_t(k)])]) {
+        seen[size_t(to[size_t(k)])] = 1;
+        parent[size_t(to[size_t(k)])] = order[h], parentKey[size_t(to[size_t(k)])] = key[size_t(k)];
+        order.push_back(to[size_t(k)]);
+      }
+  for (int v = 0; v < nv; ++v) {
+    if (!irregular(v) || !seen[size_t(v)]) continue;
+    for (int w = v; !inTree[size_t(w)]; w = parent[size_t(w)]) {
+      inTree[size_t(w)] = 1;
+      const int e = parentKey[size_t(w)], f = e / 3, i = e % 3;
+      cut[size_t(e)] = 1;
+      if (ix.FF(f, i) != f) cut[size_t(3 * ix.FF(f, i) + ix.FFi(f, i))] = 1;
+    }
+  }
+}
+
 /// The lattice 3-colouring from the seed and the cells it gives (see the header comment).
 template <class MeshType>
 void MeasureCells(const MeshType& m, int seed, int seedApex, const std::vector<int>& valence,
@@ -249,10 +304,30 @@ PatternLabels ComputeStripeLike(const MeshType& m, const StripeOptions& opt, boo
   fd.direction.assign(size_t(nf), -1);
   fd.inconsistent.assign(ne, 0);
 
+  std::vector<int> valence;
+  std::vector<char> boundary;
+  Valences(m, valence, boundary);
+  // zebra: the flood crosses the cut tree (edges joining the irregular vertices) last, so the
+  // seams lie on it, starting at the singularities
+  std::vector<char> cut(ne, 0);
+  if (zebra) MarkCutTree(m, valence, boundary, cut);
+
   // 1. the direction flood
   fd.direction[size_t(seed)] = opt.direction;
   std::deque<int> q{seed};
-  while (!q.empty()) {
+  std::vector<std::pair<int, int>> deferred;  // (face, edge) across the cut tree
+  for (size_t next = 0;;) {
+    if (q.empty()) {  // cross the cut tree only where nothing else reaches
+      while (next < deferred.size() && q.empty()) {
+        const int f = deferred[next].first, i = deferred[next].second;
+        ++next;
+        const int g = ix.FF(f, i);
+        if (fd.direction[size_t(g)] >= 0) continue;
+        fd.direction[size_t(g)] = CarryDirection(m, f, fd.direction[size_t(f)], i);
+        q.push_back(g);
+      }
+      if (q.empty()) break;
+    }
     const int f = q.front();
     q.pop_front();
     for (int i = 0; i < 3; ++i) {
@@ -260,6 +335,10 @@ PatternLabels ComputeStripeLike(const MeshType& m, const StripeOptions& opt, boo
       if (dg < 0) continue;
       const int g = ix.FF(f, i);
       if (fd.direction[size_t(g)] < 0) {
+        if (cut[size_t(3 * f + i)]) {
+          deferred.push_back({f, i});
+          continue;
+        }
         fd.direction[size_t(g)] = dg;
         q.push_back(g);
       } else if (fd.direction[size_t(g)] != dg) {
@@ -275,9 +354,6 @@ PatternLabels ComputeStripeLike(const MeshType& m, const StripeOptions& opt, boo
   auto inStrip = [&](int f) { return fd.direction[size_t(f)] >= 0 && !conflict[size_t(f)]; };
 
   // 2. line edges and edge lines
-  std::vector<int> valence;
-  std::vector<char> boundary;
-  Valences(m, valence, boundary);
   auto key = [&](int f, int i) {  // one key per undirected edge
     const int g = ix.FF(f, i);
     return g == f ? 3 * f + i : std::min(3 * f + i, 3 * g + ix.FFi(f, i));
@@ -424,6 +500,7 @@ PatternLabels ComputeStripeLike(const MeshType& m, const StripeOptions& opt, boo
     for (int f = 0; f < nf; ++f)
       for (int i = 0; i < 3; ++i) fd.lineOf[size_t(3 * f + i)] = m.face[size_t(f)].IsD() ? -1 : lineRoot(f, i);
     for (size_t e = 0; e < ne; ++e) fd.lineComplete[e] = complete[e];
+    if (zebra) fd.cutTree = cut;
     *fieldOut = std::move(fd);
   }
   return out;
