@@ -6,6 +6,7 @@
 #include <functional>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 #include <QString>
 #include <QStringList>
@@ -71,6 +72,8 @@ int DataMaskOf(unsigned components) {
   if (components & kVertMark) mask |= MeshModelT::MM_VERTMARK;
   if (components & kFaceMark) mask |= MeshModelT::MM_FACEMARK;
   if (components & kFaceFlag) mask |= MeshModelT::MM_FACEFLAG;
+  if (components & kFaceColor) mask |= MeshModelT::MM_FACECOLOR;
+  if (components & kFaceQuality) mask |= MeshModelT::MM_FACEQUALITY;
   return mask;
 }
 
@@ -91,21 +94,77 @@ int PostConditionOf(const FilterSpec& spec) {
          MeshModelT::MM_WEDGTEXCOORD | MeshModelT::MM_VERTFLAGSELECT | MeshModelT::MM_FACEFLAGSELECT;
 }
 
-/// The FilterContext of a MeshModel; logging goes through the adapter's logger.
+/// MeshLab's standard update after a filter wrote a mesh's coordinates: bounding box, face
+/// and vertex normals (MeshModel::updateBoxAndNormals in 2025.07, UpdateBoxAndNormals in 2020.09).
 template <class MeshModelT>
+auto UpdateBoxAndNormalsOf(MeshModelT& mm, int) -> decltype(mm.updateBoxAndNormals(), void()) {
+  mm.updateBoxAndNormals();
+}
+template <class MeshModelT>
+void UpdateBoxAndNormalsOf(MeshModelT& mm, long) {
+  mm.UpdateBoxAndNormals();
+}
+
+/// Removes a layer from the document: delMesh(MeshModel*) in 2020.09, delMesh(id) in 2025.07.
+template <class MeshDocumentT, class MeshModelT>
+auto DeleteLayerOf(MeshDocumentT& md, MeshModelT* mm, int) -> decltype(md.delMesh(mm), void()) {
+  md.delMesh(mm);
+}
+template <class MeshDocumentT, class MeshModelT>
+void DeleteLayerOf(MeshDocumentT& md, MeshModelT* mm, long) {
+  md.delMesh(mm->id());
+}
+
+/// The FilterContext of a MeshModel; logging goes through the adapter's logger. NewLayer adds
+/// a layer to the document the way MeshLab's own filters do (filter_meshing's "Unrolled Mesh",
+/// filter_create): MeshDocument::addNewMesh("", label), here without making it current, so
+/// the filter's mesh stays the current one (pymeshlab's MeshSet lists the layer after it);
+/// with per-face colour enabled. Finish() then updates each new layer's box and normals (as
+/// those filters call updateBoxAndNormals after filling it), or, when the filter refused,
+/// deletes the new layers, so a refusal leaves the document as it was.
+template <class MeshModelT, class MeshDocumentT = void>
 class MeshModelContext : public FilterContext {
  public:
-  MeshModelContext(MeshModelT& mm, vcg::CallBackPos* cb, std::function<void(LogLevel, const std::string&)> logger)
-      : mm_(mm), cb_(cb), logger_(std::move(logger)) {}
+  MeshModelContext(MeshModelT& mm, vcg::CallBackPos* cb, std::function<void(LogLevel, const std::string&)> logger,
+                   MeshDocumentT* md = nullptr)
+      : mm_(mm), cb_(cb), logger_(std::move(logger)), md_(md) {}
   CMeshO& Mesh() override { return mm_.cm; }
   void Require(unsigned components) override { mm_.updateDataMask(DataMaskOf<MeshModelT>(components)); }
   void Log(LogLevel level, const std::string& line) override { logger_(level, line); }
   bool (*Progress())(const int, const char*) override { return cb_; }
+  CMeshO* NewLayer(const std::string& label) override {
+    if constexpr (std::is_void_v<MeshDocumentT>) {
+      (void)label;
+      return nullptr;
+    } else {
+      if (md_ == nullptr) return nullptr;
+      MeshModelT* layer = md_->addNewMesh("", QString::fromStdString(label), false);
+      if (layer == nullptr) return nullptr;
+      layer->updateDataMask(MeshModelT::MM_FACECOLOR);
+      layers_.push_back(layer);
+      return &layer->cm;
+    }
+  }
+  /// After the filter: update the new layers (ok) or remove them (refused).
+  void Finish(bool ok) {
+    if constexpr (!std::is_void_v<MeshDocumentT>) {
+      for (MeshModelT* layer : layers_) {
+        if (ok)
+          UpdateBoxAndNormalsOf(*layer, 0);
+        else
+          DeleteLayerOf(*md_, layer, 0);
+      }
+    }
+    (void)ok;
+    layers_.clear();
+  }
 
  private:
   MeshModelT& mm_;
   vcg::CallBackPos* cb_;
   std::function<void(LogLevel, const std::string&)> logger_;
+  MeshDocumentT* md_;
+  std::vector<MeshModelT*> layers_;
 };
 
 inline std::string OutputValuesText(const FilterOutcome& out);
@@ -122,8 +181,9 @@ FilterOutcome ApplyToDocument(const FilterSpec& spec, MeshDocumentT& md, const R
   if (mm == nullptr) {
     out = FilterOutcome::Refuse("There is no current mesh.");
   } else {
-    MeshModelContext<std::remove_pointer_t<decltype(mm)>> ctx(*mm, cb, log);
+    MeshModelContext<std::remove_pointer_t<decltype(mm)>, MeshDocumentT> ctx(*mm, cb, log, &md);
     out = ApplyFilter(spec, ctx, ReadParams(spec, par));
+    ctx.Finish(out.ok);
   }
   if (!out.ok)
     log(LogLevel::Warning, "Irregular Vertices: refused: " + out.reason);

@@ -4,7 +4,7 @@ Lambert headlight, per-vertex colours (light grey without). numpy only; see
 tests/meshlabserver/mlpy/render.py.
 
     /usr/bin/python3 scripts/render_png.py IN.ply OUT.png [--size 800x800] [--view x,y,z]
-        [--title TEXT] [--legend] [--flat] [--wire]
+        [--title TEXT] [--legend] [--flat] [--wire] [--face-colors]
 """
 import argparse
 import os
@@ -13,7 +13,7 @@ import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests", "meshlabserver"))
 from mlpy import read_mesh  # noqa: E402
-from mlpy.render import draw_legend, draw_title, legend_height, render, title_height, write_png  # noqa: E402
+from mlpy.render import draw_legend, draw_title, face_colors, legend_height, render, title_height, write_png  # noqa: E402
 
 
 def parse_size(s):
@@ -40,10 +40,15 @@ def main(argv=None):
     ap.add_argument("--legend", action="store_true", help="valence colour legend (bottom left)")
     ap.add_argument("--flat", action="store_true", help="flat shading (face normals)")
     ap.add_argument("--wire", action="store_true", help="darken triangle edges")
+    ap.add_argument("--face-colors", action="store_true",
+                    help="per-face colours (the PLY's face red/green/blue, e.g. the Pattern filter's) instead of vertex colours")
     a = ap.parse_args(argv)
     t0 = time.time()
     mesh = read_mesh(a.input)
-    img = render(mesh, a.size, view=a.view, flat=a.flat, wire=a.wire,
+    per_face = face_colors(mesh) if a.face_colors else None
+    if a.face_colors and per_face is None:
+        ap.error("%s has no face colours (save with -m fc)" % a.input)
+    img = render(mesh, a.size, view=a.view, flat=a.flat, wire=a.wire, per_face=per_face,
                  pad_top=title_height() if a.title else 0, pad_bottom=legend_height() if a.legend else 0)
     if a.title:
         draw_title(img, a.title)

@@ -439,6 +439,59 @@ std::vector<FilterSpec> MakeCatalog() {
   };
   f.apply = ApplyBoundary;
   c.push_back(f);
+
+  f = FilterSpec();
+  f.id = kPattern;
+  f.name = "Irregular Vertices: Pattern";
+  f.pythonName = "compute_color_irregular_pattern";
+  f.classes = kFaceColoring | kQuality | kMeasure;
+  f.changesConnectivity = false;
+  f.info =
+      "The paper's application (Li et al., sec. 9-10, Figs. 1, 12-14): a pattern made from the triangulation's own "
+      "edges, shown as face colours (a hue per kind of region, shades per region; conflicts magenta) with the "
+      "region id in face quality, and the measures a designer compares before and after editing the irregular "
+      "vertices.<br>"
+      "<b>Stripes</b> (Fig. 1): triangle strips between consecutive straight edge lines of one lattice direction. "
+      "The direction is one edge of the seed face (the selected face, else a face of the selected vertex, else face "
+      "0) and is carried from face to face: an edge line goes straight through a vertex of valence 6 (the opposite "
+      "edge). Around a v5 or v7 the direction comes back turned by 60 degrees: the faces where it disagrees are "
+      "<i>conflict</i> (degenerate) regions. A line that stops at an interior irregular vertex does not separate "
+      "strips, so the two rows beside it make one strip of width two (three where two lines stop, ...). Strips "
+      "alternate between two colours (every 'period' strips).<br>"
+      "<b>Zebra</b> (Fig. 13): the same strips, but the direction follows the lattice through the singularities: "
+      "the seams where it comes back turned are placed at the irregular vertices (on paths joining them to the "
+      "boundary or to each other; a 5-7 pair's on its own edge), the strips just turn there, and nothing is a "
+      "conflict.<br>"
+      "Both report the hexagonal cells of the lattice: the one-rings of every third vertex (a 3-colouring carried "
+      "from the seed face, whose vertex opposite the direction edge is a centre); a cell has as many sides as its "
+      "centre's valence (a v5 centre: a pentagon).<br>"
+      "<b>Stars</b> (Fig. 12): stars around the selected vertices, else every interior v5; reports the seeds with no "
+      "other irregular vertex within the radius. <b>Circles</b> (Fig. 14): rings of faces; generate many irregular "
+      "vertices first (Irregular Vertices: Generate), then pattern.<br>"
+      "<b>Panels</b>: optionally every region becomes a panel (inset, extruded polygon) in a new layer 'panels', "
+      "ready to export. The mesh's geometry and connectivity are never changed. Returns (pymeshlab dict): strips, "
+      "strip_width_1, strip_width_2, strip_width_3_or_more, strip_width_histogram, cells, non_hexagonal_cells, "
+      "cell_sides_histogram, conflict_regions, conflict_faces, star_seeds, isolated_star_seeds, circles, panels, "
+      "panel_sides_histogram, regions, seed_face. Refuses non-manifold or polygonal meshes without changing them.";
+  f.params = {
+      Enum("pattern", 0, {"Stripes", "Zebra", "Stars", "Circles"}, "Pattern", "Which pattern to make."),
+      Int("direction", 0, 0, 2, "Direction",
+          "Stripes and zebra: which edge of the seed face (0, 1, 2: the edge from its vertex k to vertex k+1) gives "
+          "the strips' lattice direction. The three values give the three families of lines."),
+      Int("period", 2, 1, 1000, "Period",
+          "Stripes and zebra: strips alternate between the two colours every 'period' strips (2: A B A B)."),
+      Int("starRadius", 3, 1, 1000, "Star radius", "Stars: the star's radius in rings of edges around its seed."),
+      Int("ringWidth", 1, 1, 1000, "Circle ring width", "Circles: rings of faces per circle band."),
+      Bool("panels", false, "Panels",
+           "Also write a new layer 'panels' in which every region is an inset, extruded panel (geometry replacement, "
+           "Fig. 1 middle and right)."),
+      Float("panelInset", 0.15, 0.0, 0.45, "Panel inset",
+            "Panels: inset of each panel's outline, as a fraction of the mean edge length."),
+      Float("panelExtrusion", 0.25, -10.0, 10.0, "Panel extrusion",
+            "Panels: extrusion along the normal, as a fraction of the mean edge length (0: flat)."),
+  };
+  f.apply = ApplyPattern;
+  c.push_back(f);
   return c;
 }
 

@@ -30,6 +30,7 @@ namespace filter_irregular {
 enum FilterClassBits : unsigned {
   kSelection = 0x00001,
   kRemeshing = 0x00004,
+  kFaceColoring = 0x00008,
   kSmoothing = 0x00080,
   kQuality = 0x00100,
   kMeasure = 0x10000,
@@ -109,6 +110,8 @@ enum Component : unsigned {
   kVertMark = 4,
   kFaceMark = 8,
   kFaceFlag = 16,
+  kFaceColor = 32,
+  kFaceQuality = 64,
 };
 
 enum class LogLevel { Info, Warning };

@@ -19,6 +19,7 @@ enum FilterId {
   kGenerate,
   kAutomaticReduction,
   kBoundary,  // appended: ids above keep their values
+  kPattern,
 };
 
 FilterOutcome ApplyAnalyze(FilterContext& ctx, const ParamValues& par);             // filter_analyze.cpp
@@ -32,5 +33,6 @@ FilterOutcome ApplyCancelQuadruple(FilterContext& ctx, const ParamValues& par); 
 FilterOutcome ApplyGenerate(FilterContext& ctx, const ParamValues& par);            // filter_composite.cpp
 FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par);  // filter_automatic_reduction.cpp
 FilterOutcome ApplyBoundary(FilterContext& ctx, const ParamValues& par);            // filter_boundary.cpp
+FilterOutcome ApplyPattern(FilterContext& ctx, const ParamValues& par);             // filter_pattern.cpp
 
 }  // namespace filter_irregular

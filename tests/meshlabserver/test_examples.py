@@ -16,16 +16,17 @@ from mlpy import EXAMPLES, Enum, Filter, read_off, select_vertices, selected_mas
 EXAMPLE_MESH = {"analyze.mlx": "bunny00.off", "atomic.mlx": "bunny00.off", "relax.mlx": "bunny00.off",
                 "reduce.mlx": "bunny00.off", "aggregate.mlx": "bunny00.off", "move_pair.mlx": "knot1.off",
                 "cancel_triple.mlx": "knot1.off", "cancel_quadruple.mlx": "knot1.off", "generate.mlx": "knot1.off",
-                "automatic_reduction.mlx": "bunny00.off", "boundary.mlx": "mesh_with_border.off"}
+                "automatic_reduction.mlx": "bunny00.off", "boundary.mlx": "mesh_with_border.off",
+                "pattern_stripes.mlx": "three_peaks.off", "pattern_zebra.mlx": "bunny00.off"}
 
 
 def test_every_example_is_in_this_suite():
     assert sorted(os.path.basename(p) for p in glob.glob(os.path.join(EXAMPLES, "*.mlx"))) == sorted(EXAMPLE_MESH)
 
 
-def run_example(meshlab, corpus, script):
+def run_example(meshlab, corpus, script, **kw):
     src = read_off(corpus(EXAMPLE_MESH[script]))
-    r = meshlab.run(corpus(EXAMPLE_MESH[script]), filters=os.path.join(EXAMPLES, script))
+    r = meshlab.run(corpus(EXAMPLE_MESH[script]), filters=os.path.join(EXAMPLES, script), **kw)
     assert r.ok, r.log[-3000:]
     assert r.refusal is None
     m = r.mesh
@@ -223,3 +224,54 @@ def test_bad_parameter_and_bad_mesh_are_refused(meshlab, corpus, tmp_path):
     r = meshlab.run(path, filters=os.path.join(EXAMPLES, "analyze.mlx"))
     assert r.returncode == 255 and not os.path.exists(r.output_path)
     assert fix in r.refusal
+
+
+def pattern_written(m):
+    """Region id per face (face quality) and the strip / conflict masks from the face colours:
+    A strips blue-dominant, B strips sand, conflicts magenta."""
+    fp = m.face_props
+    c = np.stack([fp["red"], fp["green"], fp["blue"]], axis=1).astype(np.int64)
+    region = np.rint(fp["quality"]).astype(np.int64)
+    conflict = np.all(c == (255, 0, 255), axis=1)
+    a = (c[:, 2] > c[:, 0]) & ~conflict
+    b = (c[:, 0] > c[:, 2]) & (c[:, 1] > c[:, 2])
+    return region, a, b, conflict
+
+
+def check_pattern(out, m, zebra):
+    region, a, b, conflict = pattern_written(m)
+    strips = np.unique(region[a | b])
+    assert out["strips"] == len(strips) and np.array_equal(strips, np.arange(len(strips)))
+    assert out["conflict_faces"] == conflict.sum()
+    assert out["conflict_regions"] == len(np.unique(region[conflict]))
+    # last on the log line, which meshlabserver cuts at 4095 characters (the zebra's widest strips
+    # make it long): a cut vector parses as "[0", i.e. empty
+    if len(out["strip_width_histogram"]) > 1:
+        assert sum(out["strip_width_histogram"]) == out["strips"]
+    assert out["strip_width_1"] + out["strip_width_2"] + out["strip_width_3_or_more"] == out["strips"]
+    assert (a | b | conflict).all()  # one connected mesh: every face is a strip or a conflict
+    for r in strips[:50]:  # one kind per strip
+        assert a[region == r].all() or b[region == r].all()
+    if zebra:
+        assert out["conflict_faces"] == 0
+
+
+def test_pattern_stripes(meshlab, corpus):
+    """Reduce, then pattern (issue 15): three_peaks reduced to few irregular vertices; the stripes
+    written as face colour and quality agree with the returned measures; strips of width one are
+    the majority."""
+    src, r, m = run_example(meshlab, corpus, "pattern_stripes.mlx", mask=("vc", "vq", "fc", "fq"))
+    reduce, out = r.returned
+    assert reduce["irregular_after"] < reduce["irregular_input"]
+    check_pattern(out, m, zebra=False)
+    assert out["strip_width_1"] > out["strips"] / 2
+    assert "Seed: face 0" in r.log or "Seed: the selected vertex" in r.log
+
+
+def test_pattern_zebra(meshlab, corpus):
+    """The zebra on bunny00: no conflict face, colours and quality agree with the measures; the
+    mesh itself unchanged."""
+    src, r, m = run_example(meshlab, corpus, "pattern_zebra.mlx", mask=("vc", "vq", "vf", "fc", "fq"))
+    (out,) = r.returned
+    assert np.array_equal(m.faces, src.faces) and np.allclose(m.vertices, src.vertices, atol=1e-5)
+    check_pattern(out, m, zebra=True)

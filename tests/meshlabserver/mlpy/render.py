@@ -129,13 +129,23 @@ def vertex_colors(mesh):
     return np.tile(np.array(GREY, np.float64), (len(mesh.vertices), 1))
 
 
+def face_colors(mesh):
+    """(m, 3) float colours from red/green/blue face properties (e.g. the Pattern filter's),
+    None without them."""
+    fp = getattr(mesh, "face_props", {})
+    if all(k in fp for k in ("red", "green", "blue")):
+        return np.stack([fp["red"], fp["green"], fp["blue"]], axis=1).astype(np.float64)
+    return None
+
+
 def render(mesh, size=(800, 800), view=None, rotate=(20.0, -30.0), colors=None, flat=False,
-           wire=False, margin=0.9, pad_top=0, pad_bottom=0):
+           wire=False, margin=0.9, pad_top=0, pad_bottom=0, per_face=None):
     """(H, W, 3) uint8 image of the mesh. size: (width, height). view: eye direction from the
     centre (camera looks along -view); None: rotate=(about x, about y) degrees, camera along -z.
     colors: (n, 3) 0..255 per vertex (default: the mesh's colours or grey). flat: face normals
     instead of interpolated vertex normals. wire: darken triangle edges. pad_top, pad_bottom:
-    pixel rows kept free of the mesh (for a title or a legend)."""
+    pixel rows kept free of the mesh (for a title or a legend). per_face: (m, 3) 0..255 per face
+    of mesh.faces (e.g. face_colors(mesh)); it replaces the vertex colours, each face one colour."""
     width, height = size
     faces = _triangles(mesh)
     R = look_from(view) if view is not None else rotation(*rotate)
@@ -171,6 +181,10 @@ def render(mesh, size=(800, 800), view=None, rotate=(20.0, -30.0), colors=None, 
     shade = 0.25 + 0.75 * np.abs(nz)  # headlight, both sides lit
     col = vertex_colors(mesh) if colors is None else np.asarray(colors, np.float64)
     rgb = (W[:, :, None] * col[f]).sum(1) * shade[:, None]
+    if per_face is not None:
+        fc = np.asarray(per_face, np.float64)
+        inside = face_of[hit] < len(fc)  # fan triangles of OFF polygons have no face colour
+        rgb[inside] = fc[face_of[hit][inside]] * shade[inside, None]
     if wire:  # distance in pixels to the nearest edge = w_i * height of the triangle over edge i
         P = screen[f][:, :, :2]
         lens = np.linalg.norm(P[:, [1, 2, 0]] - P[:, [2, 0, 1]], axis=2)
