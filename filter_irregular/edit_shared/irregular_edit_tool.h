@@ -1,0 +1,86 @@
+// filter_irregular: the interactive edit tool "Irregular Vertices: Edit" (issue 16; the paper's
+// sec. 9 interface: pick a 5-7 pair, move it in one of six directions with local relaxation).
+//
+// This class is the Qt/OpenGL side shared by both MeshLab generations: it draws (irregular
+// vertices in the legend's colours, the pair, the accepted directions as arrows, the last
+// message), turns mouse and keys into requests, and tells MeshLab the mesh changed. Every
+// decision (which vertex is picked, which direction a screen vector means, whether a step is
+// done, undo) is vcg_ext/irregular/edit_session.h's; nothing here edits the mesh directly.
+// The two thin adapters (edit2020/, edit2025/) forward MeshLab's calls here; this file is
+// compiled once per generation against that generation's headers.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <QPoint>
+#include <QString>
+
+#include "core/mesh_type.h"
+
+class MeshModel;
+class GLArea;
+class MLSceneGLSharedDataContext;
+class QPainter;
+class QMouseEvent;
+class QKeyEvent;
+
+namespace vcg_ext {
+namespace irregular {
+template <class MeshType>
+class EditSession;
+}
+}  // namespace vcg_ext
+
+namespace filter_irregular {
+
+class IrregularEditTool {
+ public:
+  /// `log` writes one line into MeshLab's log (the adapters pass their Log/log).
+  explicit IrregularEditTool(std::function<void(const std::string&)> log);
+  ~IrregularEditTool();
+
+  static QString Name() { return "Irregular Vertices: Edit"; }
+  static QString Info();
+
+  /// Prepares the mesh (compact, FF/VF adjacency), opens the session and, when the current
+  /// vertex selection holds exactly two vertices, picks that pair.
+  bool Start(MeshModel& m, GLArea* gla, MLSceneGLSharedDataContext* cont);
+  /// Closes the session (its undo history with it) and compacts the mesh.
+  void End(MeshModel& m, GLArea* gla);
+  /// Called inside paintGL: does a pending pick (needs the depth buffer), caches the
+  /// projection for keys and drags, draws the overlay.
+  void Decorate(MeshModel& m, GLArea* gla, QPainter* p);
+  void MousePress(QMouseEvent* e, MeshModel& m, GLArea* gla);
+  void MouseMove(QMouseEvent* e, MeshModel& m, GLArea* gla);
+  void MouseRelease(QMouseEvent* e, MeshModel& m, GLArea* gla);
+  void KeyPress(QKeyEvent* e, MeshModel& m, GLArea* gla);
+
+ private:
+  typedef vcg_ext::irregular::EditSession<CMeshO> Session;
+  struct View;  // the projection cached by the last Decorate
+
+  void Report(bool ok, const std::string& what);
+  /// After a step, a cancellation or an undo: normals, bbox, the irregular set, and MeshLab's
+  /// buffers (positions and connectivity).
+  void MeshChanged(MeshModel& m, GLArea* gla);
+  void RefreshIrregular(MeshModel& m);
+  void StepToward(double sx, double sy, MeshModel& m, GLArea* gla);
+  bool Project(const CMeshO::CoordType& p, double& x, double& y) const;
+
+  std::function<void(const std::string&)> log_;
+  std::unique_ptr<Session> session_;
+  std::unique_ptr<View> view_;
+  MLSceneGLSharedDataContext* cont_ = nullptr;
+  std::vector<int> irregular_;            ///< irregular vertex indices, for drawing
+  std::vector<int> equivalentValence_;    ///< their equivalent valence (legend colour)
+  std::string message_;                   ///< drawn in the viewport
+  bool messageIsError_ = false;
+  // mouse: a click (press + release without moving) picks, a drag steps toward the cursor
+  bool pressed_ = false, dragging_ = false, pickPending_ = false, pickPartner_ = false;
+  QPoint pressAt_, pickAt_;  ///< GL window coordinates (y up, device pixels)
+};
+
+}  // namespace filter_irregular
