@@ -105,7 +105,9 @@ void IrregularEditTool::End(MeshModel& m, GLArea* gla) {
 void IrregularEditTool::Report(bool ok, const std::string& what) {
   message_ = what;
   messageIsError_ = !ok;
-  log_(std::string(kTool) + ": " + what);
+  // MeshLab hands the edit tool its log only in paintGL (GLArea sets it before Decorate):
+  // the line is written by the next Decorate, which every request triggers.
+  pendingLog_.push_back(std::string(kTool) + ": " + what);
 }
 
 void IrregularEditTool::RefreshIrregular(MeshModel& m) {
@@ -164,10 +166,13 @@ void IrregularEditTool::StepToward(double sx, double sy, MeshModel& m, GLArea* g
                       (session_->Message().empty() ? std::string() : ": " + session_->Message()));
     return;
   }
+  DoStep(k, m, gla);
+}
+
+void IrregularEditTool::DoStep(int k, MeshModel& m, GLArea* gla) {
   irr::Result r = session_->Step(k);
-  Report(bool(r), r ? "step in direction " + std::to_string(k + 1) + " done" +
-                          (session_->Message().empty() ? std::string() : " (" + session_->Message() + ")")
-                    : "step in direction " + std::to_string(k + 1) + " refused: " + r.reason);
+  const std::string dir = "step in direction " + std::to_string(k + 1);
+  Report(bool(r), r ? dir + " done: " + session_->Message() : dir + ": " + r.reason);
   if (r) MeshChanged(m, gla);
 }
 
@@ -213,22 +218,17 @@ void IrregularEditTool::KeyPress(QKeyEvent* e, MeshModel& m, GLArea* gla) {
   const int key = e->key();
   if (key == Qt::Key_Z && (e->modifiers() & Qt::ControlModifier)) {
     e->accept();
-    if (session_->Undo()) {
-      Report(true, "undone (" + std::to_string(session_->UndoDepth()) + " more steps to undo)");
-      MeshChanged(m, gla);
-    } else {
-      Report(false, "nothing to undo");
-    }
+    const bool undone = session_->Undo();
+    Report(undone, session_->Message().empty() ? std::string(undone ? "undone" : "nothing to undo")
+                                               : session_->Message());
+    if (undone) MeshChanged(m, gla);
   } else if (key >= Qt::Key_1 && key <= Qt::Key_6) {
     e->accept();
     const int k = key - Qt::Key_1;
     if (!session_->HasPair()) {
       Report(false, "no pair picked: click near an irregular vertex first");
     } else {
-      irr::Result r = session_->Step(k);
-      Report(bool(r), r ? "step in direction " + std::to_string(k + 1) + " done"
-                        : "step in direction " + std::to_string(k + 1) + " refused: " + r.reason);
-      if (r) MeshChanged(m, gla);
+      DoStep(k, m, gla);
     }
   } else if (key == Qt::Key_Left || key == Qt::Key_Right || key == Qt::Key_Up || key == Qt::Key_Down) {
     e->accept();
@@ -250,6 +250,8 @@ void IrregularEditTool::KeyPress(QKeyEvent* e, MeshModel& m, GLArea* gla) {
 }
 
 void IrregularEditTool::Decorate(MeshModel& m, GLArea* gla, QPainter* p) {
+  for (const std::string& line : pendingLog_) log_(line);
+  pendingLog_.clear();
   if (!session_) return;
   CMeshO& cm = m.cm;
   glPushMatrix();
@@ -391,6 +393,8 @@ void IrregularEditTool::Decorate(MeshModel& m, GLArea* gla, QPainter* p) {
     if (!message_.empty())
       vcg::glLabel::render2D(p, vcg::glLabel::TOP_LEFT, 2, QString::fromStdString(message_), textMode);
   }
+  for (const std::string& line : pendingLog_) log_(line);  // the pick's line
+  pendingLog_.clear();
 }
 
 }  // namespace filter_irregular

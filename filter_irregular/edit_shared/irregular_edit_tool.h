@@ -67,7 +67,10 @@ class IrregularEditTool {
   /// buffers (positions and connectivity).
   void MeshChanged(MeshModel& m, GLArea* gla);
   void RefreshIrregular(MeshModel& m);
+  /// The accepted direction nearest to the screen vector (sx, sy) (GL window coordinates).
   void StepToward(double sx, double sy, MeshModel& m, GLArea* gla);
+  /// Step(k), its message, and MeshChanged when done.
+  void DoStep(int k, MeshModel& m, GLArea* gla);
   bool Project(const CMeshO::CoordType& p, double& x, double& y) const;
 
   std::function<void(const std::string&)> log_;
@@ -77,6 +80,7 @@ class IrregularEditTool {
   std::vector<int> irregular_;            ///< irregular vertex indices, for drawing
   std::vector<int> equivalentValence_;    ///< their equivalent valence (legend colour)
   std::string message_;                   ///< drawn in the viewport
+  std::vector<std::string> pendingLog_;   ///< lines for MeshLab's log, written by Decorate
   bool messageIsError_ = false;
   // mouse: a click (press + release without moving) picks, a drag steps toward the cursor
   bool pressed_ = false, dragging_ = false, pickPending_ = false, pickPartner_ = false;
