@@ -35,7 +35,7 @@ const char* kTool = "Irregular Vertices: Edit";
 /// A drag steps once the cursor is this far (pixels) from the moved vertex on screen.
 const double kDragPixels = 12.0;
 /// Arrows are drawn at least this long (pixels) so that short edges stay readable.
-const double kMinArrowPixels = 28.0;
+const double kMinArrowPixels = 40.0;
 }  // namespace
 
 struct IrregularEditTool::View {
@@ -371,27 +371,38 @@ void IrregularEditTool::Decorate(MeshModel& m, GLArea* gla, QPainter* p) {
   glPopAttrib();
 
   if (p) {
+    // text with a one-pixel dark shadow, readable over the light mesh and the dark background
+    auto label = [p](vcg::Point2f at, const QString& text, vcg::glLabel::Mode mode) {
+      vcg::glLabel::Mode shadow = mode;
+      shadow.color = vcg::Color4b(0, 0, 0, 255);
+      vcg::glLabel::render2D(p, vcg::Point2f(at.X() + 1, at.Y() - 1), text, shadow);
+      vcg::glLabel::render2D(p, at, text, mode);
+    };
+    GLint vp[4];
+    glGetIntegerv(GL_VIEWPORT, vp);
+    const float lineStep = 18.f;
+    auto line = [&](int i, const QString& text, vcg::glLabel::Mode mode) {
+      label(vcg::Point2f(6.f, float(vp[3]) - 16.f - lineStep * float(i)), text, mode);
+    };
     vcg::glLabel::Mode keyMode(vcg::Color4b(255, 230, 0, 255));
     keyMode.qFont.setPixelSize(15);
     keyMode.qFont.setBold(true);
     for (const Arrow& a : arrows) {
       const double dx = a.x1 - a.x0, dy = a.y1 - a.y0, len = std::hypot(dx, dy);
-      vcg::glLabel::render2D(p, vcg::Point2f(float(a.x1 + dx / len * 10 - 4), float(a.y1 + dy / len * 10 - 6)),
-                             QString::number(a.k + 1), keyMode);
+      label(vcg::Point2f(float(a.x1 + dx / len * 10 - 4), float(a.y1 + dy / len * 10 - 6)), QString::number(a.k + 1),
+            keyMode);
     }
     vcg::glLabel::Mode textMode(messageIsError_ ? vcg::Color4b(255, 90, 70, 255) : vcg::Color4b(240, 240, 240, 255));
     textMode.qFont.setPixelSize(14);
-    vcg::glLabel::render2D(p, vcg::glLabel::TOP_LEFT, 0,
-                           QString("%1: %2 irregular vertices%3").arg(kTool).arg(irregular_.size())
-                               .arg(session_->HasPair() ? QString(", pair %1-%2").arg(session_->Lead()).arg(session_->Partner())
-                                                        : QString()),
-                           vcg::glLabel::Mode(vcg::Color4b(240, 240, 240, 255)));
-    vcg::glLabel::render2D(p, vcg::glLabel::TOP_LEFT, 1,
-                           "keys 1-6 / arrows: step   drag: move toward cursor   T / Q: cancel triple / quadruple   "
-                           "Ctrl+Z: undo   Shift+click: partner",
-                           vcg::glLabel::Mode(vcg::Color4b(200, 200, 200, 255)));
-    if (!message_.empty())
-      vcg::glLabel::render2D(p, vcg::glLabel::TOP_LEFT, 2, QString::fromStdString(message_), textMode);
+    line(0,
+         QString("%1: %2 irregular vertices%3").arg(kTool).arg(irregular_.size())
+             .arg(session_->HasPair() ? QString(", pair %1-%2").arg(session_->Lead()).arg(session_->Partner()) : QString()),
+         vcg::glLabel::Mode(vcg::Color4b(240, 240, 240, 255)));
+    line(1,
+         "keys 1-6 / arrows: step   drag: move toward cursor   T / Q: cancel triple / quadruple   Ctrl+Z: undo   "
+         "Shift+click: partner   Esc: navigate",
+         vcg::glLabel::Mode(vcg::Color4b(210, 210, 210, 255)));
+    if (!message_.empty()) line(2, QString::fromStdString(message_), textMode);
   }
   for (const std::string& line : pendingLog_) log_(line);  // the pick's line
   pendingLog_.clear();

@@ -4,8 +4,7 @@ edit_test.sh, which provides the X server, the D-Bus session and the settings fo
 
   start MeshLab on a PLY whose two selected vertices are a 5-7 pair -> Edit > Irregular
   Vertices: Edit (the tool picks the pair from the selection; log line "pair picked from the
-  selection") -> click the empty left margin of the viewport (keyboard focus; a click on no
-  surface picks nothing) -> key <key> <n> times (each must log "step in direction <key> done")
+  selection") -> a wheel notch over the viewport (keyboard focus; the tool ignores the wheel) -> key <key> <n> times (each must log "step in direction <key> done")
   -> screenshot (and the README picture) -> File > Export Mesh As... <ply> -> File > Exit
 
 Screenshots of every step go to --out. Exits 1 with a "gui: FAIL ..." line naming the step
@@ -18,7 +17,7 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from mlgui import GuiError, log, wait_for  # noqa: E402
+from mlgui import GuiError, log, run, wait_for  # noqa: E402
 from gui_session import export_mesh, open_main, quit_meshlab, readme_picture, run_meshlab  # noqa: E402
 
 TOOL = "Irregular Vertices: Edit"
@@ -34,6 +33,10 @@ def main():
     ap.add_argument("--key", default="1", help="the direction key (1-6)")
     ap.add_argument("--steps", type=int, default=3)
     ap.add_argument("--readme-png", default="")
+    ap.add_argument("--rotate", type=int, default=0,
+                    help="before the tool starts, drag the view this many pixels to the right (trackball), "
+                         "so that the pair faces the camera in the screenshot")
+    ap.add_argument("--zoom", type=int, default=0, help="then this many wheel notches (zoom in)")
     return run_meshlab(ap.parse_args(), session)
 
 
@@ -45,6 +48,22 @@ def tool_lines(g):
 
 def session(a, a11y, proc):
     g = open_main(a, a11y, proc)
+    if a.rotate or a.zoom:
+        # the view only (MeshLab's trackball, before the tool takes the mouse): the mesh and
+        # the checks are unaffected
+        x, y, w, h = g.main_frame().extents()
+        cx, cy = x + int(0.3 * w), y + int(0.45 * h)
+        run("xdotool", "mousemove", "--sync", str(cx), str(cy))
+        if a.rotate:
+            run("xdotool", "mousedown", "1")
+            for k in range(1, 11):
+                run("xdotool", "mousemove", "--sync", str(cx + a.rotate * k // 10), str(cy))
+                time.sleep(0.05)
+            run("xdotool", "mouseup", "1")
+        if a.zoom:
+            run("xdotool", "click", "--repeat", str(a.zoom), "--delay", "150", "5")
+        time.sleep(1.0)
+        g.shot("view")
 
     # 1. the tool, by name, in the Edit menu
     where = g.locate_in_menu("Edit", TOOL)
@@ -68,42 +87,42 @@ def session(a, a11y, proc):
     time.sleep(1.0)
     g.shot("tool_started")
 
-    # 2. keyboard focus: a click on the viewport's empty left margin (no surface there: the
-    # tool logs "nothing under the cursor" and keeps the pair)
-    main = g.main_frame()
-    x, y, w, h = main.extents()
-    n_lines = len(tool_lines(g))
-    g.click_at(x + 15, y + 300)
+    # 2. keyboard focus: one wheel notch over the viewport (GLArea takes the focus on a wheel
+    # event and hands the event to the tool, which ignores it: no pick, no zoom)
+    x, y, w, h = g.main_frame().extents()
+    run("xdotool", "mousemove", "--sync", str(x + int(0.3 * w)), str(y + int(0.45 * h)))
+    run("xdotool", "click", "5")
+    time.sleep(0.5)
 
-    def focus_line():
-        g.check_alive("the focus click")
-        new = tool_lines(g)[n_lines:]
-        return new[0] if new else None
-    line = wait_for("the tool's answer to the focus click", focus_line, 10)
-    if "nothing under the cursor" not in line:
-        raise GuiError("the focus click hit the mesh: '%s' (the left margin of the viewport is not empty?)" % line)
-
-    # 3. the steps: one key press each, each must be logged as done
+    # 3. the steps: one key press each, each must be logged as done; then Ctrl+Z undoes the
+    # last one and the key redoes it (the export must still be "steps" steps from the start)
     done_re = re.compile(r"step in direction %s done" % re.escape(a.key))
-    for i in range(a.steps):
-        before = len(tool_lines(g))
-        g.key(a.key)
 
-        def stepped():
-            g.check_alive("step %d" % (i + 1))
+    def press(keys, what, ok):
+        before = len(tool_lines(g))
+        g.key(keys)
+
+        def answered():
+            g.check_alive(what)
             new = tool_lines(g)[before:]
-            for ln in new:  # the first line after the key press says done or why not
-                if done_re.search(ln):
-                    return ln
-                raise GuiError("step %d not done: '%s'" % (i + 1, ln))
-            return None
-        line = wait_for("step %d logged as done" % (i + 1), stepped, 20)
-        log("step %d: %s" % (i + 1, line))
+            if not new:  # the first line after the key press says done or why not
+                return None
+            if not ok(new[0]):
+                raise GuiError("%s: '%s'" % (what, new[0]))
+            return new[0]
+        line = wait_for("the tool's answer to %s" % what, answered, 20)
+        log("%s: %s" % (what, line))
         time.sleep(0.5)
+
+    for i in range(a.steps):
+        press(a.key, "step %d" % (i + 1), done_re.search)
+    press("ctrl+z", "Ctrl+Z (undo the last step)", lambda ln: "undone" in ln)
+    press(a.key, "step %d again" % a.steps, done_re.search)
     time.sleep(1.5)  # the repaint with the re-uploaded buffers
     shot = g.shot("after_steps")
-    if a.readme_png:
-        readme_picture(shot, a.readme_png)
+    if a.readme_png:  # the main window, without the status bar
+        x, y, w, h = g.main_frame().extents()
+        readme_picture(shot, a.readme_png, "%dx%d+%d+%d" % (w, h - 40, x, y))
     with open(os.path.join(a.out, "meshlab_gui_log.txt"), "w") as f:
         f.write(g.log_text().replace("\u2028", "\n") + "\n")
 

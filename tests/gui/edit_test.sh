@@ -16,7 +16,10 @@
 # 4. edit_check.py check: the exported mesh has the pair where Move Pair puts it, the same
 #    counts and valence histogram as the reference, every other irregular vertex with its
 #    valence, every vertex far from the pair unmoved.
-# With EDIT_TEST_README_PNG=docs/gui_edit_<gen>.png the README picture is written too.
+# Before the tool starts the view is turned (a 200-pixel trackball drag, EDIT_TEST_ROTATE) and
+# zoomed (3 wheel notches, EDIT_TEST_ZOOM) so that the pair faces the camera in the screenshot;
+# after the steps, Ctrl+Z undoes the last one and key 1 redoes it. With
+# EDIT_TEST_README_PNG=docs/gui_edit_<gen>.png the README picture is written too.
 # Exit status 0 = pass; otherwise a "gui: FAIL ..." or "edit_check: FAIL ..." line says why.
 # 2020 runs a private stage in <out>/stage2020 (Debian's meshlab + system plugins + the two
 # given .so); 2025 stages the GUI of the plugins' scalar into build/stage2025[-double].
@@ -69,7 +72,8 @@ gui_start_display "$out"
 ply=$out/knot1_edited_gui$gen.ply
 set +e
 /usr/bin/python3 "$here/tests/gui/edit_session.py" --meshlab "$bin" --title "$title" --mesh "$input" \
-  --out "$out" --ply "$ply" --key $((direction + 1)) --steps $steps --readme-png "${EDIT_TEST_README_PNG:-}"
+  --out "$out" --ply "$ply" --key $((direction + 1)) --steps $steps --readme-png "${EDIT_TEST_README_PNG:-}" \
+  --rotate "${EDIT_TEST_ROTATE:-200}" --zoom "${EDIT_TEST_ZOOM:-3}"
 rc=$?
 set -e
 [ $rc -eq 0 ] || { echo "gui: FAIL the edit tool's GUI session in MeshLab $gen failed (screenshots and meshlab.log in $out)" >&2; exit 1; }

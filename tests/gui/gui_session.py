@@ -294,10 +294,11 @@ def quit_meshlab(g, proc):
     log("MeshLab quit (status 0)")
 
 
-def readme_picture(shot, dest):
-    """The main window without the empty bottom rows, reduced to an 8-bit palette PNG."""
+def readme_picture(shot, dest, crop="1600x960+0+0"):
+    """The main window without the empty bottom rows (or the `crop` geometry), reduced to an
+    8-bit palette PNG."""
     os.makedirs(os.path.dirname(os.path.abspath(dest)), exist_ok=True)
-    run("/usr/bin/convert", shot, "-crop", "1600x960+0+0", "+repage",
+    run("/usr/bin/convert", shot, "-crop", crop, "+repage",
         "-dither", "None", "-colors", "256", "-strip", "PNG8:" + dest)
     log("README picture %s (%d KB)" % (dest, os.path.getsize(dest) // 1024))
 
