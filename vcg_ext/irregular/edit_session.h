@@ -1,16 +1,61 @@
 // filter_irregular: the logic of the interactive edit tool (paper sec. 9: "select a vertex pair
 // and one of six movement directions ... interleaved with local and global relaxation").
-// SKELETON: the contract the GUI plugins code against; the implementation is being written
-// (issue 16). No Qt, no OpenGL: the GUI passes positions and a projection in.
+// The MeshLab edit plugins (2020.09 and 2025.07) are thin views over this class: they pass the
+// clicked surface point, key presses and a projection in, and draw Directions() and Message().
+// No Qt, no OpenGL.
+//
+// What a session holds, and what it costs:
+//  * The original surface, frozen when the session starts (surface_projector.h): relaxation
+//    after every step projects on it (sec. 8), so many steps do not drift the shape.
+//    O(F log F) once, at construction.
+//  * A picking grid (pick_grid.h): a hash of the vertex positions in cells of the pick radius,
+//    built on the first pick (O(V) once) and refreshed after every step and undo on the
+//    vertices the step can touch (Touched()), so a click costs O(vertices near the click).
+//  * An undo stack: each step or cancellation runs on its own MeshEditor, whose journal
+//    (journal.h) is that step's undo entry; Undo rolls the newest one back, restoring positions,
+//    connectivity, attributes and the picked pair bit for bit. Beyond opt.undoDepth entries the
+//    oldest journal is dropped (its edit becomes permanent), so memory stays bounded.
+//
+// The dry run of a step. Directions() tries each of the six moves on the mesh itself through a
+// journal checkpoint and rolls it back (the mechanism that makes every refused operation all or
+// nothing, journal.h): the verdict is Step(k)'s by construction - same code, same state - and
+// the arrow ends where the lead really lands, after relaxation. A scratch-copy prediction
+// (CompositePredictor::PredictMovePair) copies 13 and then 26 rings around the pair for each
+// direction and is exact only when two region sizes agree; the trial costs one step, which is
+// cheaper and never disagrees. Between two calls of the public API the mesh is always as the
+// last Step / Undo left it. Directions() are cached until the mesh or the pair changes.
+//
+// Direction k is the Move Pair filter's `direction` parameter (filter_composite.cpp passes it
+// unchanged to CompositeOperations::MovePair): for an adjacent 5-7 pair the atomic move k of
+// atomic_ops.h (0..5 counter-clockwise around the v5 from the v7, fig. 6); for any other pair
+// the lead moves toward its neighbour k counted counter-clockwise from its neighbour of
+// smallest index (sec. 7.1.1, fig. 10). The GUI never needs to know which: it draws the arrow
+// from `from` to `to` and maps arrow keys and drags through DirectionToward.
+//
+// Preconditions: FF and VF adjacency up to date on a manifold, consistently oriented mesh
+// (as for MeshEditor); the mesh is edited only through this session while it lives.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+#include <deque>
 #include <functional>
+#include <memory>
+#include <sstream>
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 #include <vcg/space/point2.h>
 
+#include "composite_ops.h"
+#include "composite_prediction.h"
+#include "pick_grid.h"
+#include "relaxation.h"
 #include "result.h"
+#include "separatrix.h"
+#include "surface_projector.h"
+#include "topology.h"
 
 namespace vcg_ext {
 namespace irregular {
@@ -20,6 +65,8 @@ struct EditSessionOptions {
   int relaxIterations = 3;   ///< sweeps of that relaxation
   int undoDepth = 200;       ///< steps kept for Undo (at least 100, the issue's floor)
   double pickRadius = 0;     ///< picking radius in model units; 0: 1.5 mean edge lengths
+  int partnerHops = 50;      ///< how far (in edges) a partner is searched from the lead
+  int cancelHops = 12;       ///< how far (in edges) a third / fourth vertex is searched for a cancellation
 };
 
 /// One of the six movement directions of the picked pair (atomic_ops.h convention k = 0..5).
@@ -29,54 +76,432 @@ struct EditDirection {
   bool accepted = false;  ///< the dry run says the step would be done
   std::string reason;     ///< why not, when refused
   CoordType from, to;     ///< the moved vertex now, and where it would be after the step
+                          ///< (after relaxation); to == from when refused
+  int lead = -1, partner = -1;  ///< where the lead / the partner would end (accepted only)
 };
 
 template <class MeshType>
 class EditSession {
  public:
   typedef typename MeshType::CoordType CoordType;
+  typedef MeshEditor<MeshType> Editor;
+  typedef CompositeOperations<MeshType> Ops;
 
-  explicit EditSession(MeshType& m, EditSessionOptions opt = EditSessionOptions()) : m_(m), opt_(opt) {}
+  /// Freezes the original surface (O(F log F)); picking structures are built on the first pick.
+  explicit EditSession(MeshType& m, EditSessionOptions opt = EditSessionOptions())
+      : m_(m), opt_(opt), original_(m), grid_(m) {
+    opt_.undoDepth = std::max(1, opt_.undoDepth);
+  }
 
   // --- picking
   /// Picks the irregular vertex nearest to `surfacePoint` (within the pick radius) and its
-  /// nearest irregular partner as the pair.
-  Result PickAt(const CoordType& surfacePoint) { (void)surfacePoint; return NotYet(); }
-  /// Picks vertex v as the lead, and its nearest irregular partner.
-  Result PickVertex(int v) { (void)v; return NotYet(); }
+  /// nearest irregular partner as the pair. Refused, with the pair unchanged, when the nearest
+  /// vertex is regular, on the boundary, or there is no vertex within the radius.
+  Result PickAt(const CoordType& surfacePoint) {
+    EnsureGrid();
+    const double r = PickRadius();
+    int nearest = -1, nearestIrregular = -1;
+    double dn = 0, di = 0;
+    grid_.ForEachNear(surfacePoint, r, [&](int v, double d) {
+      if (!Live(v)) return;
+      if (nearest < 0 || d < dn || (d == dn && v < nearest)) nearest = v, dn = d;
+      if (Pickable(v).ok && (nearestIrregular < 0 || d < di || (d == di && v < nearestIrregular)))
+        nearestIrregular = v, di = d;
+    });
+    if (nearestIrregular >= 0) return PickVertex(nearestIrregular);
+    if (nearest >= 0) return Say(Pickable(nearest));
+    return Say(Result::Fail(Str("no vertex within ", r, " of the click (the pick radius): click on the mesh, next to an "
+                                "irregular vertex")));
+  }
+  /// Picks vertex v as the lead, and its nearest irregular partner (fewest edges, then nearest
+  /// in space, then smallest index; at most opt.partnerHops edges away).
+  Result PickVertex(int v) {
+    Result ok = Pickable(v);
+    if (!ok) return Say(ok);
+    Invalidate();
+    lead_ = v;
+    partner_ = NearestPartner(v);
+    if (partner_ < 0)
+      return Say(Result::Ok(), Str("vertex ", v, " (valence ", Valence(v), ") picked; no irregular vertex within ",
+                                   opt_.partnerHops, " edges to pair it with: click its partner"));
+    return Say(Result::Ok(), Str("pair picked: vertex ", lead_, " (valence ", Valence(lead_), ") leads, vertex ", partner_,
+                                 " (valence ", Valence(partner_), ") follows"));
+  }
   /// Makes v the partner of the current lead (a second click).
-  Result PickPartner(int v) { (void)v; return NotYet(); }
-  /// The pair from the current vertex selection (exactly two selected vertices, or one).
-  Result PickFromSelection() { return NotYet(); }
+  Result PickPartner(int v) {
+    if (lead_ < 0) return Say(Result::Fail("pick the lead first: click an irregular vertex"));
+    if (v == lead_) return Say(Result::Fail(Str("vertex ", v, " is already the lead: click another irregular vertex")));
+    Result ok = Pickable(v);
+    if (!ok) return Say(ok);
+    Invalidate();
+    partner_ = v;
+    return Say(Result::Ok(), Str("pair picked: vertex ", lead_, " (valence ", Valence(lead_), ") leads, vertex ", partner_,
+                                 " (valence ", Valence(partner_), ") follows"));
+  }
+  /// The pair from the current vertex selection: two selected vertices (the lower valence
+  /// leads, then the smaller index), or one (PickVertex). O(V): one pass per user request.
+  Result PickFromSelection() {
+    std::vector<int> sel;
+    for (size_t i = 0; i < m_.vert.size(); ++i)
+      if (!m_.vert[i].IsD() && m_.vert[i].IsS()) sel.push_back(int(i));
+    if (sel.size() == 1) return PickVertex(sel[0]);
+    if (sel.size() != 2)
+      return Say(Result::Fail(Str("select one or two irregular vertices to pick a pair (", sel.size(), " are selected)")));
+    for (int v : sel) {
+      Result ok = Pickable(v);
+      if (!ok) return Say(ok);
+    }
+    if (Valence(sel[1]) < Valence(sel[0])) std::swap(sel[0], sel[1]);
+    Invalidate();
+    lead_ = sel[0];
+    partner_ = -1;
+    return PickPartner(sel[1]);
+  }
   bool HasPair() const { return lead_ >= 0 && partner_ >= 0; }
   int Lead() const { return lead_; }
   int Partner() const { return partner_; }
+  /// Forgets the pair (the mesh and the undo stack stay).
+  void ClearPair() {
+    Invalidate();
+    lead_ = partner_ = -1;
+  }
 
   // --- directions and steps
-  /// The six directions with their dry-run verdicts (empty without a pair).
-  std::vector<EditDirection<CoordType>> Directions() { return {}; }
-  /// The accepted direction whose drawn arrow (projected by `project`) is closest in angle to
-  /// the screen vector `screen` (arrow keys, mouse drag); -1 if none.
-  int DirectionToward(const std::function<vcg::Point2d(const CoordType&)>& project, vcg::Point2d screen) {
-    (void)project; (void)screen; return -1;
+  /// The six directions with their dry-run verdicts (empty without a pair). Cached until the
+  /// mesh or the pair changes; computing them costs six trial steps (see the header).
+  std::vector<EditDirection<CoordType>> Directions() {
+    if (!HasPair()) return {};
+    if (dirsValid_) return dirs_;
+    dirs_.clear();
+    for (int k = 0; k < 6; ++k) dirs_.push_back(Trial(k));
+    dirsValid_ = true;
+    return dirs_;
   }
-  /// One step of the pair in direction k, then local relaxation; one undo entry.
-  Result Step(int k) { (void)k; return NotYet(); }
-  /// Cancels the triple / quadruple the pair is part of, when the paper's conditions hold.
-  Result CancelTriple() { return NotYet(); }
-  Result CancelQuadruple() { return NotYet(); }
+  /// The accepted direction whose drawn arrow (projected by `project`) is closest in angle to
+  /// the screen vector `screen` (arrow keys, mouse drag); -1 if none (no pair, nothing
+  /// accepted, a zero screen vector). Ties: the smaller k.
+  int DirectionToward(const std::function<vcg::Point2d(const CoordType&)>& project, vcg::Point2d screen) {
+    if (screen.Norm() == 0) return -1;
+    int best = -1;
+    double bestAngle = 0;
+    for (const auto& d : Directions()) {
+      if (!d.accepted) continue;
+      const vcg::Point2d a = project(d.to) - project(d.from);
+      if (a.Norm() == 0) continue;
+      const double c = std::max(-1.0, std::min(1.0, (a * screen) / (a.Norm() * screen.Norm())));
+      const double angle = std::acos(c);
+      if (best < 0 || angle < bestAngle) best = d.k, bestAngle = angle;
+    }
+    return best;
+  }
+  /// The accepted direction whose step brings the lead nearest to `target` (mouse drag toward
+  /// a surface point); -1 when no step brings it closer.
+  int DirectionTowardPoint(const CoordType& target) {
+    int best = -1;
+    double bestD = 0;
+    for (const auto& d : Directions()) {
+      if (!d.accepted) continue;
+      const double now = (d.from - target).Norm(), after = (d.to - target).Norm();
+      if (after < now && (best < 0 || after < bestD)) best = d.k, bestD = after;
+    }
+    return best;
+  }
+  /// One step toward a surface point (DirectionTowardPoint); refused when none gets closer.
+  Result StepToward(const CoordType& target) {
+    if (!HasPair()) return Say(NoPair());
+    const int k = DirectionTowardPoint(target);
+    if (k < 0) return Say(Result::Fail("no accepted step brings the pair closer to the cursor"));
+    return Step(k);
+  }
+  /// One step of the pair in direction k, then local relaxation; one undo entry. The pair
+  /// follows the moved vertices. Refused, with the mesh bit-identical, with Message() saying why.
+  Result Step(int k) {
+    if (!HasPair()) return Say(NoPair());
+    if (k < 0 || k > 5) return Say(Result::Fail(Str("direction ", k, " does not exist: the directions are 0 to 5")));
+    Entry e = Begin();
+    std::vector<int> before = PairRegion(lead_, partner_);
+    CompositeOutcome o = Ops(*e.ed, &original_, CompositeOpt()).MovePair(lead_, partner_, k, 1);
+    if (!o) return Say(Result::Fail(Str("direction ", k + 1, " refused: ", o.result.reason)));
+    const int l0 = lead_, p0 = partner_;
+    lead_ = o.lead;
+    partner_ = o.partner;
+    Push(std::move(e), before, PairRegion(lead_, partner_));
+    return Say(Result::Ok(), Str("moved the pair in direction ", k + 1, ": vertex ", l0, " -> ", lead_, ", vertex ", p0,
+                                 " -> ", partner_));
+  }
+  /// Cancels the triple the pair forms with a nearby third irregular vertex (5-5-7 or 5-7-7,
+  /// sec. 7.2): the candidates are tried nearest first (fewest edges from the pair), each by
+  /// its dry run (CompositePredictor) before the real cancellation. One undo entry. After it
+  /// the survivor leads, paired with its nearest partner.
+  Result CancelTriple() {
+    if (!HasPair()) return Say(NoPair());
+    std::vector<int> near = NearbyIrregular(4);
+    std::string why;
+    for (int c : near) {
+      std::vector<int> t{lead_, partner_, c};
+      if (!ValencesAre(t, {5, 5, 7}) && !ValencesAre(t, {5, 7, 7})) continue;
+      Result r = TryCancel(t, false);
+      if (r) return r;
+      if (why.empty()) why = Str(" (with vertex ", c, ": ", r.reason, ")");
+    }
+    return Say(Result::Fail(Str("no irregular vertex within ", opt_.cancelHops, " edges of the pair forms a 5-5-7 or 5-7-7 "
+                                "triple with it that can be cancelled", why)));
+  }
+  /// Cancels the quadruple (5-5-7-7, sec. 7.3) the pair forms with two nearby irregular
+  /// vertices, tried like CancelTriple. One undo entry; afterwards no pair is picked.
+  Result CancelQuadruple() {
+    if (!HasPair()) return Say(NoPair());
+    std::vector<int> near = NearbyIrregular(6);
+    std::string why;
+    for (size_t a = 0; a < near.size(); ++a)
+      for (size_t b = a + 1; b < near.size(); ++b) {
+        std::vector<int> q{lead_, partner_, near[a], near[b]};
+        if (!ValencesAre(q, {5, 5, 7, 7})) continue;
+        Result r = TryCancel(q, true);
+        if (r) return r;
+        if (why.empty()) why = Str(" (with vertices ", near[a], " and ", near[b], ": ", r.reason, ")");
+      }
+    return Say(Result::Fail(Str("no two irregular vertices within ", opt_.cancelHops, " edges of the pair form a 5-5-7-7 "
+                                "quadruple with it that can be cancelled", why)));
+  }
   /// Undoes the last step (or cancellation); false when there is nothing to undo.
-  bool Undo() { return false; }
-  int UndoDepth() const { return 0; }
+  bool Undo() {
+    if (undo_.empty()) {
+      Say(Result::Fail("nothing to undo"));
+      return false;
+    }
+    Entry& e = undo_.back();
+    e.ed->RollbackTo(e.start);
+    lead_ = e.lead;
+    partner_ = e.partner;
+    touched_ = e.touched;
+    undo_.pop_back();
+    Invalidate();
+    grid_.Refresh(touched_);
+    Say(Result::Ok(), Str("undone (", undo_.size(), " more steps can be undone)"));
+    return true;
+  }
+  int UndoDepth() const { return int(undo_.size()); }
   /// The last refusal or success message, for the viewport and the log.
   const std::string& Message() const { return message_; }
+  /// The vertices the last step, cancellation or undo may have changed (positions, valences;
+  /// created vertices included), for the GUI's partial re-upload and the picking grid.
+  const std::vector<int>& Touched() const { return touched_; }
+  /// The pick radius in model units (opt.pickRadius, or 1.5 mean edge lengths).
+  double PickRadius() {
+    if (opt_.pickRadius > 0) return opt_.pickRadius;
+    EnsureGrid();
+    return 1.5 * grid_.MeanEdge();
+  }
+  const SurfaceProjector& Original() const { return original_; }
 
  private:
-  Result NotYet() { return Result::Fail("the edit tool is not implemented yet"); }
+  /// One undo entry: the journal of one step, and the pair before it.
+  struct Entry {
+    std::unique_ptr<Editor> ed;
+    typename Editor::Checkpoint start;
+    int lead = -1, partner = -1;
+    std::vector<int> touched;
+  };
+
+  template <class... Args>
+  static std::string Str(const Args&... args) {
+    std::ostringstream o;
+    using expand = int[];
+    (void)expand{0, ((o << args), 0)...};
+    return o.str();
+  }
+  Result Say(Result r, const std::string& okText = std::string()) {
+    message_ = r ? okText : r.reason;
+    return r.ok ? Result::Ok() : r;
+  }
+  static Result NoPair() { return Result::Fail("no pair is picked: click an irregular vertex (and, optionally, its partner)"); }
+
+  bool Live(int v) const {
+    return v >= 0 && size_t(v) < m_.vert.size() && !m_.vert[size_t(v)].IsD() && m_.vert[size_t(v)].cVFp() != nullptr;
+  }
+  int Valence(int v) { return StarOf<MeshType>(&m_.vert[size_t(v)]).Valence(); }
+  /// Ok if v can be picked: a live, interior, irregular vertex; else the reason, for the user.
+  Result Pickable(int v) {
+    if (!Live(v)) return Result::Fail(Str("vertex ", v, " is not a vertex of the mesh"));
+    VertexStar<MeshType> s = StarOf<MeshType>(&m_.vert[size_t(v)]);
+    if (s.boundary)
+      return Result::Fail(Str("vertex ", v, " lies on the boundary (valence ", s.Valence(),
+                              "): the edit tool moves interior irregular vertices"));
+    if (s.Valence() == RegularValenceOf(s))
+      return Result::Fail(Str("vertex ", v, " is regular (valence ", s.Valence(), "): click an irregular vertex"));
+    return Result::Ok();
+  }
+
+  void EnsureGrid() {
+    if (!grid_.Built()) grid_.Build(opt_.pickRadius);
+  }
+  void Invalidate() { dirsValid_ = false; }
+
+  CompositeOptions CompositeOpt() const {
+    CompositeOptions co;
+    co.relax = opt_.relax;
+    co.relaxIterations = opt_.relaxIterations;
+    return co;
+  }
+
+  /// Breadth-first rings around `seeds`; calls visit(v, ring) for every vertex reached beyond
+  /// the seeds, up to `hops` rings, and stops after the first ring where visit returned true.
+  template <class Visit>
+  void Rings(const std::vector<int>& seeds, int hops, Visit visit) {
+    std::unordered_set<int> seen(seeds.begin(), seeds.end());
+    std::vector<int> frontier(seeds);
+    for (int r = 1; r <= hops && !frontier.empty(); ++r) {
+      std::vector<int> next;
+      bool stop = false;
+      for (int v : frontier)
+        for (auto n : StarOf<MeshType>(&m_.vert[size_t(v)]).neighbors) {
+          const int ni = int(vcg::tri::Index(m_, n));
+          if (seen.insert(ni).second) next.push_back(ni);
+        }
+      std::sort(next.begin(), next.end());
+      for (int v : next) stop = visit(v, r) || stop;
+      if (stop) return;
+      frontier.swap(next);
+    }
+  }
+
+  /// The irregular interior vertex nearest to v: fewest edges, then nearest in space, then
+  /// smallest index. -1 if none within opt.partnerHops edges.
+  int NearestPartner(int v) {
+    int best = -1;
+    double bd = 0;
+    const CoordType p = m_.vert[size_t(v)].P();
+    Rings({v}, opt_.partnerHops, [&](int w, int) {
+      if (!Pickable(w).ok) return false;
+      const double d = (m_.vert[size_t(w)].P() - p).Norm();
+      if (best < 0 || d < bd || (d == bd && w < best)) best = w, bd = d;
+      return true;
+    });
+    return best;
+  }
+
+  /// Up to `count` irregular interior vertices near the pair, fewest edges first (then the
+  /// smaller index), within opt.cancelHops edges.
+  std::vector<int> NearbyIrregular(size_t count) {
+    std::vector<int> out;
+    Rings({lead_, partner_}, opt_.cancelHops, [&](int w, int) {
+      if (out.size() < count && Pickable(w).ok) out.push_back(w);
+      return out.size() >= count;
+    });
+    return out;
+  }
+
+  bool ValencesAre(const std::vector<int>& vs, std::vector<int> want) {
+    std::vector<int> d;
+    for (int v : vs) d.push_back(Valence(v));
+    std::sort(d.begin(), d.end());
+    return d == want;
+  }
+
+  /// The vertices a step of the pair (a, b) can change: the pair, the connecting path the
+  /// transport follows (separatrix.h; sec. 7.1.1), and 3 rings around them (relaxation moves
+  /// the 2-ring of every atomic step). O(L) vertices.
+  std::vector<int> PairRegion(int a, int b) {
+    std::vector<int> seeds{a, b};
+    if (!Live(a) || !Live(b)) {
+      seeds.clear();
+      for (int v : {a, b})
+        if (Live(v)) seeds.push_back(v);
+    } else if (a != b && StarOf<MeshType>(&m_.vert[size_t(a)]).IndexOf(&m_.vert[size_t(b)]) < 0) {
+      ConnectingPath c = SeparatrixTracer<MeshType>(m_).Connect(a, b, CompositeOpt().maxTransportSteps);
+      if (c) {
+        std::vector<int> cv = c.Vertices();
+        seeds.insert(seeds.end(), cv.begin(), cv.end());
+      }
+    }
+    return KRing(m_, seeds, 3);
+  }
+
+  Entry Begin() {
+    Entry e;
+    e.ed.reset(new Editor(m_));
+    e.start = e.ed->Mark();
+    e.lead = lead_;
+    e.partner = partner_;
+    return e;
+  }
+  /// Records a done edit as one undo entry; drops (commits) the oldest beyond the depth.
+  void Push(Entry e, const std::vector<int>& before, const std::vector<int>& after) {
+    const int n0 = int(e.start.verts);
+    touched_ = before;
+    touched_.insert(touched_.end(), after.begin(), after.end());
+    for (int i = n0; i < int(m_.vert.size()); ++i) touched_.push_back(i);  // created vertices
+    std::sort(touched_.begin(), touched_.end());
+    touched_.erase(std::unique(touched_.begin(), touched_.end()), touched_.end());
+    e.touched = touched_;
+    undo_.push_back(std::move(e));
+    while (int(undo_.size()) > opt_.undoDepth) undo_.pop_front();
+    Invalidate();
+    grid_.Refresh(touched_);
+  }
+
+  /// Direction k tried on the mesh and rolled back (see the header).
+  EditDirection<CoordType> Trial(int k) {
+    EditDirection<CoordType> d;
+    d.k = k;
+    d.from = d.to = m_.vert[size_t(lead_)].P();
+    Editor ed(m_);
+    const typename Editor::Checkpoint cp = ed.Mark();
+    CompositeOutcome o = Ops(ed, &original_, CompositeOpt()).MovePair(lead_, partner_, k, 1);
+    d.accepted = o.result.ok;
+    if (o) {
+      d.to = m_.vert[size_t(o.lead)].P();
+      d.lead = o.lead;
+      d.partner = o.partner;
+      ed.RollbackTo(cp);
+    } else {
+      d.reason = o.result.reason;
+    }
+    return d;
+  }
+
+  /// The cancellation of `group` (triple or quadruple): dry run, then the real one as one undo
+  /// entry. Refused (mesh unchanged) if either says no.
+  Result TryCancel(const std::vector<int>& group, bool quadruple) {
+    CompositePredictor<MeshType> pr(m_, &original_, CompositeOpt());
+    CompositePrediction p = quadruple ? pr.PredictCancelQuadruple(group) : pr.PredictCancelTriple(group);
+    if (!p) return p.result;
+    std::vector<int> before;
+    for (size_t i = 0; i < group.size(); ++i)
+      for (size_t j = i + 1; j < group.size(); ++j) {
+        std::vector<int> r = PairRegion(group[i], group[j]);
+        before.insert(before.end(), r.begin(), r.end());
+      }
+    Entry e = Begin();
+    Ops co(*e.ed, &original_, CompositeOpt());
+    CompositeOutcome o = quadruple ? co.CancelQuadruple(group) : co.CancelTriple(group);
+    if (!o) return o.result;
+    std::vector<int> after;
+    if (!quadruple && Live(o.survivor)) after = KRing(m_, {o.survivor}, 3);
+    Push(std::move(e), before, after);
+    std::string what = quadruple ? "quadruple" : "triple";
+    std::string ids = Str(group[0], ", ", group[1], ", ", group[2]) + (quadruple ? Str(", ", group[3]) : std::string());
+    if (quadruple || !Live(o.survivor)) {
+      lead_ = partner_ = -1;
+      return Say(Result::Ok(), Str("cancelled the ", what, " (", ids, ")"));
+    }
+    lead_ = o.survivor;
+    partner_ = NearestPartner(lead_);
+    return Say(Result::Ok(), Str("cancelled the triple (", ids, "): vertex ", lead_, " (valence ", Valence(lead_),
+                                 ") is left", partner_ >= 0 ? Str(", paired with vertex ", partner_) : std::string()));
+  }
+
   MeshType& m_;
   EditSessionOptions opt_;
+  SurfaceProjector original_;
+  PickGrid<MeshType> grid_;
   int lead_ = -1, partner_ = -1;
   std::string message_;
+  std::deque<Entry> undo_;
+  std::vector<int> touched_;
+  std::vector<EditDirection<CoordType>> dirs_;
+  bool dirsValid_ = false;
 };
 
 }  // namespace irregular

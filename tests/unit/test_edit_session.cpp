@@ -1,0 +1,421 @@
+// Unit tests of vcg_ext/irregular/edit_session.h: the logic of the interactive edit tool
+// (issue 16): picking, the direction under the cursor, steps, undo, cancellation.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <set>
+#include <vector>
+
+#include <vcg_ext/irregular/composite_prediction.h>
+#include <vcg_ext/irregular/edit_session.h>
+#include <vcg_ext/irregular/mesh_checks.h>
+
+#include "test_mesh.h"
+#include "test_util.h"
+
+using namespace vcg_ext::irregular;
+using test::TMesh;
+typedef TMesh::CoordType P3;
+
+namespace {
+
+/// A regular torus with one generated 5-5-7-7 quadruple whose pairs lie `spacing` steps apart.
+struct QuadMesh {
+  TMesh m;
+  int pair5 = -1, pair7 = -1, other5 = -1, other7 = -1;
+};
+
+void MakeQuadruple(QuadMesh& q, int spacing, bool planar) {
+  int centre;
+  if (planar) {
+    test::HexPatch(q.m, 14);
+    centre = 0;
+  } else {
+    test::RegularTorus(q.m, 40, 40);
+    centre = 20 * 40 + 20;
+  }
+  SurfaceProjector original(q.m);
+  MeshEditor<TMesh> ed(q.m);
+  CompositeOperations<TMesh> co(ed, &original);
+  CompositeOutcome g = co.GenerateQuadruple(centre, 0, spacing);
+  ASSERT_TRUE(g) << g.result.reason;
+  q.pair5 = g.pair5, q.pair7 = g.pair7, q.other5 = g.other5, q.other7 = g.other7;
+  ASSERT_EQ(test::IrregularVertices(q.m).size(), 4u);
+}
+
+int ValenceOf(TMesh& m, int v) { return StarOf<TMesh>(&m.vert[size_t(v)]).Valence(); }
+
+std::set<int> IrregularSet(TMesh& m) {
+  std::vector<int> v = test::IrregularVertices(m);
+  return std::set<int>(v.begin(), v.end());
+}
+
+/// Orthographic projection onto the xy plane (the screen of a camera looking down -z).
+vcg::Point2d Ortho(const P3& p) { return vcg::Point2d(p[0], p[1]); }
+
+}  // namespace
+
+TEST(EditSession, PicksTheIrregularVertexUnderTheClickAndItsNearestPartner) {
+  QuadMesh q;
+  MakeQuadruple(q, 4, true);
+  EditSession<TMesh> s(q.m);
+  EXPECT_FALSE(s.HasPair());
+  // a click a little off the v5 of the moved pair: it leads, its adjacent v7 is the partner
+  const P3 click = q.m.vert[size_t(q.pair5)].P() + P3(0.2f, 0.1f, 0);
+  ASSERT_TRUE(s.PickAt(click).ok) << s.Message();
+  EXPECT_EQ(s.Lead(), q.pair5);
+  EXPECT_EQ(s.Partner(), q.pair7);
+  EXPECT_TRUE(s.HasPair());
+  // the other pair: its v7 picked leads, its v5 follows
+  ASSERT_TRUE(s.PickAt(q.m.vert[size_t(q.other7)].P()).ok) << s.Message();
+  EXPECT_EQ(s.Lead(), q.other7);
+  EXPECT_EQ(s.Partner(), q.other5);
+  // a second click picks the partner
+  ASSERT_TRUE(s.PickPartner(q.pair5).ok) << s.Message();
+  EXPECT_EQ(s.Lead(), q.other7);
+  EXPECT_EQ(s.Partner(), q.pair5);
+  // a click on a regular vertex is refused with the reason; the pair stays
+  int regular = -1;
+  for (size_t i = 0; i < q.m.vert.size() && regular < 0; ++i) {
+    const P3 p = q.m.vert[i].P();
+    if (p.Norm() > 6 && p.Norm() < 8) regular = int(i);
+  }
+  ASSERT_GE(regular, 0);
+  ASSERT_EQ(ValenceOf(q.m, regular), 6);
+  Result r = s.PickAt(q.m.vert[size_t(regular)].P());
+  EXPECT_FALSE(r.ok);
+  EXPECT_EQ(s.Message(), "vertex " + std::to_string(regular) + " is regular (valence 6): click an irregular vertex");
+  EXPECT_EQ(s.Lead(), q.other7);
+  EXPECT_EQ(s.Partner(), q.pair5);
+  // far from the mesh
+  EXPECT_FALSE(s.PickAt(P3(100, 100, 0)).ok);
+  EXPECT_NE(s.Message().find("no vertex within"), std::string::npos) << s.Message();
+  // a partner that is regular, or the lead itself
+  EXPECT_FALSE(s.PickPartner(regular).ok);
+  EXPECT_FALSE(s.PickPartner(s.Lead()).ok);
+  EXPECT_EQ(s.Partner(), q.pair5);
+  // a boundary vertex (valence 3 at a corner of the hexagon, 4 on a side): refused
+  int corner = -1;
+  for (size_t i = 0; i < q.m.vert.size() && corner < 0; ++i)
+    if (StarOf<TMesh>(&q.m.vert[i]).boundary) corner = int(i);
+  EXPECT_FALSE(s.PickVertex(corner).ok);
+  EXPECT_NE(s.Message().find("boundary"), std::string::npos) << s.Message();
+}
+
+TEST(EditSession, PicksThePairFromTheSelection) {
+  QuadMesh q;
+  MakeQuadruple(q, 4, false);
+  EditSession<TMesh> s(q.m);
+  EXPECT_FALSE(s.PickFromSelection().ok);  // nothing selected
+  q.m.vert[size_t(q.other7)].SetS();
+  q.m.vert[size_t(q.pair5)].SetS();
+  ASSERT_TRUE(s.PickFromSelection().ok) << s.Message();
+  EXPECT_EQ(s.Lead(), q.pair5);  // the lower valence leads
+  EXPECT_EQ(s.Partner(), q.other7);
+  q.m.vert[size_t(q.other5)].SetS();
+  EXPECT_FALSE(s.PickFromSelection().ok);
+  EXPECT_NE(s.Message().find("3 are selected"), std::string::npos) << s.Message();
+  q.m.vert[size_t(q.other5)].ClearS();
+  q.m.vert[size_t(q.other7)].ClearS();
+  ASSERT_TRUE(s.PickFromSelection().ok) << s.Message();  // one: its nearest partner
+  EXPECT_EQ(s.Lead(), q.pair5);
+  EXPECT_EQ(s.Partner(), q.pair7);
+}
+
+TEST(EditSession, DirectionUnderTheCursorWithAnOrthographicProjection) {
+  QuadMesh q;
+  MakeQuadruple(q, 4, true);
+  EditSession<TMesh> s(q.m);
+  ASSERT_TRUE(s.PickVertex(q.pair5).ok) << s.Message();
+  ASSERT_EQ(s.Partner(), q.pair7);
+  auto dirs = s.Directions();
+  ASSERT_EQ(dirs.size(), 6u);
+  // on the flat lattice every move of an adjacent 5-7 pair is possible
+  int accepted = 0;
+  for (auto& d : dirs) accepted += d.accepted;
+  EXPECT_EQ(accepted, 6);
+  // the six arrows point six different ways, about 60 degrees apart; each screen vector along
+  // an arrow, and turned 20 degrees off it, selects that arrow
+  for (auto& d : dirs) {
+    if (!d.accepted) continue;
+    const vcg::Point2d a = Ortho(d.to) - Ortho(d.from);
+    ASSERT_GT(a.Norm(), 0.3) << "direction " << d.k;
+    EXPECT_EQ(s.DirectionToward(Ortho, a), d.k);
+    for (double turn : {-20.0, 20.0}) {
+      const double t = turn * M_PI / 180;
+      const vcg::Point2d b(a[0] * std::cos(t) - a[1] * std::sin(t), a[0] * std::sin(t) + a[1] * std::cos(t));
+      EXPECT_EQ(s.DirectionToward(Ortho, b), d.k) << "direction " << d.k << " turned " << turn;
+    }
+  }
+  // the six arrows are spread around: sorted by angle, consecutive ones 30..90 degrees apart
+  std::vector<double> angles;
+  for (auto& d : dirs) {
+    const vcg::Point2d a = Ortho(d.to) - Ortho(d.from);
+    angles.push_back(std::atan2(a[1], a[0]) * 180 / M_PI);
+  }
+  std::sort(angles.begin(), angles.end());
+  for (size_t i = 0; i < angles.size(); ++i) {
+    double gap = (i + 1 < angles.size() ? angles[i + 1] : angles[0] + 360) - angles[i];
+    EXPECT_GT(gap, 25) << i;
+    EXPECT_LT(gap, 95) << i;
+  }
+  EXPECT_EQ(s.DirectionToward(Ortho, vcg::Point2d(0, 0)), -1);
+  // a point target: the step that brings the lead closest
+  const P3 far = dirs[2].from + (dirs[2].to - dirs[2].from) * 10;
+  EXPECT_EQ(s.DirectionTowardPoint(far), 2);
+}
+
+TEST(EditSession, StepMovesThePairWhereTheDryRunSaid) {
+  QuadMesh q;
+  MakeQuadruple(q, 4, true);
+  EditSession<TMesh> s(q.m);
+  ASSERT_TRUE(s.PickVertex(q.pair5).ok);
+  for (int k = 0; k < 6; ++k) {
+    const int l0 = s.Lead(), p0 = s.Partner();
+    auto dirs = s.Directions();
+    ASSERT_TRUE(dirs[size_t(k)].accepted) << dirs[size_t(k)].reason;
+    // the scratch-copy dry run of the same move names the same vertices
+    CompositePredictor<TMesh> pr(q.m, &s.Original());
+    CompositePrediction p = pr.PredictMovePair(l0, p0, k, 1);
+    ASSERT_TRUE(bool(p)) << p.result.reason;
+    const test::MeshSnapshot before = test::Snapshot(q.m);
+    std::set<int> neighbours;
+    for (auto n : StarOf<TMesh>(&q.m.vert[size_t(l0)]).neighbors) neighbours.insert(int(vcg::tri::Index(q.m, n)));
+    const P3 leadWas = q.m.vert[size_t(l0)].P();
+    ASSERT_TRUE(s.Step(k).ok) << s.Message();
+    EXPECT_EQ(s.Lead(), dirs[size_t(k)].lead);
+    EXPECT_EQ(s.Partner(), dirs[size_t(k)].partner);
+    EXPECT_TRUE(q.m.vert[size_t(s.Lead())].P() == dirs[size_t(k)].to);
+    if (p.exact) {
+      EXPECT_EQ(s.Lead(), p.lead);
+      EXPECT_EQ(s.Partner(), p.partner);
+    }
+    // the pair is still an adjacent 5-7 pair; everything else touched is regular
+    EXPECT_EQ(ValenceOf(q.m, s.Lead()), 5);
+    EXPECT_EQ(ValenceOf(q.m, s.Partner()), 7);
+    EXPECT_EQ(IrregularSet(q.m), (std::set<int>{s.Lead(), s.Partner(), q.other5, q.other7}));
+    for (int v : s.Touched()) {
+      if (v == s.Lead() || v == s.Partner() || v == q.other5 || v == q.other7 || q.m.vert[size_t(v)].IsD()) continue;
+      auto st = StarOf<TMesh>(&q.m.vert[size_t(v)]);
+      EXPECT_EQ(st.Valence(), RegularValenceOf(st)) << "vertex " << v;
+    }
+    // the lead moved one step: onto a neighbour it had (or a vertex a split created), about
+    // one edge length away
+    const bool created = size_t(s.Lead()) >= before.verts.size();
+    EXPECT_TRUE(created || neighbours.count(s.Lead())) << "direction " << k << ": lead " << l0 << " -> " << s.Lead();
+    const double d = double((q.m.vert[size_t(s.Lead())].P() - leadWas).Norm());
+    EXPECT_GT(d, 0.4) << "direction " << k;
+    EXPECT_LT(d, 1.6) << "direction " << k;
+    // nothing outside the touched region changed
+    const test::MeshSnapshot after = test::Snapshot(q.m);
+    std::set<int> touched(s.Touched().begin(), s.Touched().end());
+    for (size_t v = 0; v < before.verts.size(); ++v)
+      if (!touched.count(int(v))) EXPECT_TRUE(before.verts[v] == after.verts[v]) << "vertex " << v << " changed";
+    Result inv = CheckInvariants(q.m);
+    ASSERT_TRUE(inv.ok) << inv.reason;
+  }
+}
+
+TEST(EditSession, UndoRestoresTheMeshBitIdentically) {
+  for (int n : {1, 3, 150}) {
+    QuadMesh q;
+    MakeQuadruple(q, 5, false);
+    EditSession<TMesh> s(q.m);
+    ASSERT_TRUE(s.PickVertex(q.pair7).ok);
+    const int l0 = s.Lead(), p0 = s.Partner();
+    const test::MeshSnapshot start = test::Snapshot(q.m);
+    std::mt19937 rng(7 + unsigned(n));
+    std::vector<test::MeshSnapshot> states{start};
+    std::vector<std::pair<int, int>> pairs{{l0, p0}};
+    for (int i = 0; i < n; ++i) {
+      std::vector<int> ok;
+      for (auto& d : s.Directions())
+        if (d.accepted) ok.push_back(d.k);
+      ASSERT_FALSE(ok.empty()) << "step " << i;
+      ASSERT_TRUE(s.Step(ok[rng() % ok.size()]).ok) << s.Message();
+      if (n <= 3) states.push_back(test::Snapshot(q.m));
+      pairs.push_back({s.Lead(), s.Partner()});
+    }
+    EXPECT_EQ(s.UndoDepth(), n);
+    Result inv = CheckInvariants(q.m);
+    ASSERT_TRUE(inv.ok) << inv.reason;
+    for (int i = n; i-- > 0;) {
+      ASSERT_TRUE(s.Undo()) << i;
+      if (n <= 3) EXPECT_TRUE(test::Snapshot(q.m) == states[size_t(i)]) << "after undoing step " << i + 1;
+      EXPECT_EQ(s.Lead(), pairs[size_t(i)].first);
+      EXPECT_EQ(s.Partner(), pairs[size_t(i)].second);
+    }
+    EXPECT_TRUE(test::Snapshot(q.m) == start) << n << " steps undone";
+    EXPECT_EQ(s.Lead(), l0);
+    EXPECT_EQ(s.Partner(), p0);
+    EXPECT_FALSE(s.Undo());
+    EXPECT_EQ(s.Message(), "nothing to undo");
+    EXPECT_TRUE(test::Snapshot(q.m) == start);
+  }
+}
+
+TEST(EditSession, UndoBeyondTheDepthIsRefusedCleanly) {
+  QuadMesh q;
+  MakeQuadruple(q, 5, false);
+  EditSessionOptions opt;
+  opt.undoDepth = 4;
+  EditSession<TMesh> s(q.m, opt);
+  ASSERT_TRUE(s.PickVertex(q.pair5).ok);
+  std::vector<test::MeshSnapshot> states{test::Snapshot(q.m)};
+  for (int i = 0; i < 7; ++i) {
+    int k = -1;
+    for (auto& d : s.Directions())
+      if (d.accepted && k < 0 && d.k == (i % 2 ? 1 : 0)) k = d.k;
+    ASSERT_GE(k, 0);
+    ASSERT_TRUE(s.Step(k).ok) << s.Message();
+    states.push_back(test::Snapshot(q.m));
+  }
+  EXPECT_EQ(s.UndoDepth(), 4);
+  for (int i = 0; i < 4; ++i) ASSERT_TRUE(s.Undo());
+  EXPECT_TRUE(test::Snapshot(q.m) == states[3]);  // the three oldest steps were committed
+  const int lead = s.Lead(), partner = s.Partner();
+  EXPECT_FALSE(s.Undo());
+  EXPECT_EQ(s.Message(), "nothing to undo");
+  EXPECT_TRUE(test::Snapshot(q.m) == states[3]);
+  EXPECT_EQ(s.Lead(), lead);
+  EXPECT_EQ(s.Partner(), partner);
+  EXPECT_TRUE(CheckInvariants(q.m).ok);
+}
+
+TEST(EditSession, RefusedStepsChangeNothingAndSayWhy) {
+  QuadMesh q;
+  MakeQuadruple(q, 3, true);
+  EditSession<TMesh> s(q.m);
+  EXPECT_FALSE(s.Step(0).ok);  // no pair
+  EXPECT_NE(s.Message().find("no pair is picked"), std::string::npos) << s.Message();
+  ASSERT_TRUE(s.PickVertex(q.pair5).ok);
+  const test::MeshSnapshot before = test::Snapshot(q.m);
+  EXPECT_FALSE(s.Step(6).ok);
+  EXPECT_NE(s.Message().find("does not exist"), std::string::npos) << s.Message();
+  // march the pair into the hexagon's boundary until a direction is refused there
+  int refused = -1;
+  for (int i = 0; i < 30 && refused < 0; ++i) {
+    auto dirs = s.Directions();
+    for (auto& d : dirs)
+      if (!d.accepted && refused < 0) refused = d.k;
+    if (refused >= 0) break;
+    ASSERT_TRUE(s.Step(0).ok) << s.Message();
+  }
+  ASSERT_GE(refused, 0) << "no direction was ever refused";
+  const test::MeshSnapshot mid = test::Snapshot(q.m);
+  const int depth = s.UndoDepth(), lead = s.Lead(), partner = s.Partner();
+  const std::string why = s.Directions()[size_t(refused)].reason;
+  EXPECT_FALSE(why.empty());
+  EXPECT_FALSE(s.Step(refused).ok);
+  EXPECT_NE(s.Message().find(why), std::string::npos) << s.Message() << " / " << why;
+  EXPECT_TRUE(test::Snapshot(q.m) == mid);
+  EXPECT_EQ(s.UndoDepth(), depth);
+  EXPECT_EQ(s.Lead(), lead);
+  EXPECT_EQ(s.Partner(), partner);
+  while (s.Undo()) {
+  }
+  EXPECT_TRUE(test::Snapshot(q.m) == before);
+}
+
+/// Random states: random pairs (adjacent 5-7, non-adjacent 5-5, 5-7, 7-7) after random steps;
+/// every arrow's verdict is the step's, the step ends where the arrow ends, and undo restores.
+TEST(EditSession, ArrowsAgreeWithStepsOnRandomStates) {
+  std::mt19937 rng(2024);
+  int checked = 0, accepted = 0, refused = 0;
+  for (int round = 0; round < 12; ++round) {
+    QuadMesh q;
+    MakeQuadruple(q, 2 + round % 3, round % 2 == 0);
+    EditSession<TMesh> s(q.m);
+    const int all[4] = {q.pair5, q.pair7, q.other5, q.other7};
+    const int lead = all[rng() % 4];
+    int partner = all[rng() % 4];
+    while (partner == lead) partner = all[rng() % 4];
+    ASSERT_TRUE(s.PickVertex(lead).ok);
+    ASSERT_TRUE(s.PickPartner(partner).ok);
+    for (int walk = 0; walk < 4; ++walk) {
+      auto dirs = s.Directions();
+      std::vector<int> ok;
+      for (auto& d : dirs) {
+        const test::MeshSnapshot before = test::Snapshot(q.m);
+        const int l = s.Lead(), p = s.Partner();
+        Result r = s.Step(d.k);
+        ++checked;
+        EXPECT_EQ(d.accepted, r.ok) << "round " << round << " direction " << d.k << ": arrow says "
+                                    << (d.accepted ? "ok" : d.reason) << ", step says " << s.Message();
+        if (r.ok) {
+          ++accepted;
+          ok.push_back(d.k);
+          EXPECT_EQ(s.Lead(), d.lead);
+          EXPECT_EQ(s.Partner(), d.partner);
+          EXPECT_TRUE(q.m.vert[size_t(s.Lead())].P() == d.to);
+          Result inv = CheckInvariants(q.m);
+          EXPECT_TRUE(inv.ok) << inv.reason;
+          ASSERT_TRUE(s.Undo());
+        } else {
+          ++refused;
+          EXPECT_FALSE(s.Message().empty());
+        }
+        EXPECT_TRUE(test::Snapshot(q.m) == before) << "round " << round << " direction " << d.k;
+        EXPECT_EQ(s.Lead(), l);
+        EXPECT_EQ(s.Partner(), p);
+      }
+      if (ok.empty()) break;
+      ASSERT_TRUE(s.Step(ok[rng() % ok.size()]).ok);
+    }
+  }
+  std::printf("arrows vs steps: %d checked, %d accepted, %d refused\n", checked, accepted, refused);
+  EXPECT_GT(accepted, 50);
+  EXPECT_GT(refused, 0);
+}
+
+TEST(EditSession, CancelsAQuadrupleThroughTheSession) {
+  QuadMesh q;
+  MakeQuadruple(q, 2, false);
+  const test::MeshSnapshot before = test::Snapshot(q.m);
+  EditSession<TMesh> s(q.m);
+  ASSERT_TRUE(s.PickVertex(q.pair5).ok);
+  EXPECT_FALSE(s.CancelTriple().ok);  // no v5 or v7 would make a triple: refused, unchanged
+  EXPECT_TRUE(test::Snapshot(q.m) == before);
+  ASSERT_TRUE(s.CancelQuadruple().ok) << s.Message();
+  EXPECT_TRUE(test::IrregularVertices(q.m).empty());
+  EXPECT_FALSE(s.HasPair());
+  EXPECT_TRUE(CheckInvariants(q.m).ok);
+  ASSERT_TRUE(s.Undo());
+  EXPECT_TRUE(test::Snapshot(q.m) == before);
+  EXPECT_EQ(s.Lead(), q.pair5);
+}
+
+TEST(EditSession, CancelsATripleThroughTheSession) {
+  TMesh m;
+  test::Icosphere(m, 3);
+  int v5 = -1;
+  for (size_t i = 0; i < m.vert.size() && v5 < 0; ++i)
+    if (ValenceOf(m, int(i)) == 5) v5 = int(i);
+  CompositeOutcome g;
+  {
+    SurfaceProjector original(m);
+    MeshEditor<TMesh> ed(m);
+    CompositeOperations<TMesh> co(ed, &original);
+    g = co.GenerateTriple(v5, 0, 2);
+    ASSERT_TRUE(g) << g.result.reason;
+  }
+  const std::set<int> irregularBefore = IrregularSet(m);
+  ASSERT_EQ(irregularBefore.size(), 14u);
+  const test::MeshSnapshot before = test::Snapshot(m);
+  EditSession<TMesh> s(m);
+  ASSERT_TRUE(s.PickVertex(g.pair5).ok);
+  ASSERT_TRUE(s.PickPartner(g.pair7).ok);
+  ASSERT_TRUE(s.CancelTriple().ok) << s.Message();
+  // 12 v5 again: the triple left one v5, the session's new lead
+  std::vector<int> irr = test::IrregularVertices(m);
+  EXPECT_EQ(irr.size(), 12u);
+  for (int v : irr) EXPECT_EQ(ValenceOf(m, v), 5);
+  EXPECT_EQ(ValenceOf(m, s.Lead()), 5);
+  EXPECT_TRUE(CheckInvariants(m).ok);
+  ASSERT_TRUE(s.Undo());
+  EXPECT_TRUE(test::Snapshot(m) == before);
+  EXPECT_EQ(s.Lead(), g.pair5);
+  EXPECT_EQ(s.Partner(), g.pair7);
+}
