@@ -1,6 +1,7 @@
 // filter_irregular: the Qt/OpenGL side of "Irregular Vertices: Edit" (see irregular_edit_tool.h).
 #include "irregular_edit_tool.h"
 
+#include <algorithm>
 #include <cmath>
 
 #if FI_MESHLAB_API == 2025
@@ -98,8 +99,8 @@ void IrregularEditTool::End(MeshModel& m, GLArea* gla) {
   vcg::tri::UpdateTopology<CMeshO>::FaceFace(m.cm);
   vcg::tri::UpdateTopology<CMeshO>::VertexFace(m.cm);
   MeshChanged(m, gla);
-  irregular_.clear();
-  equivalentValence_.clear();
+  equivalent_.clear();
+  irregularCount_ = 0;
 }
 
 void IrregularEditTool::Report(bool ok, const std::string& what) {
@@ -111,21 +112,59 @@ void IrregularEditTool::Report(bool ok, const std::string& what) {
 }
 
 void IrregularEditTool::RefreshIrregular(MeshModel& m) {
-  // O(n), like the buffer re-upload that follows every change; not part of the step itself.
+  // O(n), once per use of the tool (Start); steps refresh locally (RefreshAround).
   irr::ValenceField<CMeshO> vf = irr::ComputeValences(m.cm);
-  irregular_.clear();
-  equivalentValence_.clear();
+  equivalent_.assign(m.cm.vert.size(), -1);
+  irregularCount_ = 0;
   for (size_t i = 0; i < m.cm.vert.size(); ++i)
-    if (!m.cm.vert[i].IsD() && vf.IsIrregular(i)) {
-      irregular_.push_back(int(i));
-      equivalentValence_.push_back(vf.Equivalent(i));
+    if (!m.cm.vert[i].IsD() && vf.referenced[i]) {
+      equivalent_[i] = vf.Equivalent(i);
+      irregularCount_ += vf.IsIrregular(i);
     }
 }
 
+void IrregularEditTool::RefreshAround(MeshModel& m, const std::vector<int>& touched) {
+  // What a step can change: the valence and position of the touched vertices (created ones
+  // included), hence the normals of their faces and of those faces' vertices. O(touched).
+  CMeshO& cm = m.cm;
+  equivalent_.resize(cm.vert.size(), -1);
+  std::vector<CMeshO::FacePointer> faces;
+  for (int v : touched) {
+    if (v < 0 || size_t(v) >= cm.vert.size()) continue;
+    CMeshO::VertexType& vert = cm.vert[size_t(v)];
+    int e = -1;
+    if (!vert.IsD() && vert.cVFp() != nullptr) {
+      irr::VertexStar<CMeshO> star = irr::StarOf<CMeshO>(&vert);
+      e = irr::EquivalentValence(star.Valence(), irr::RegularValenceOf(star));
+      for (auto& c : star.corners) faces.push_back(c.f);
+      cm.bbox.Add(vert.P());
+    }
+    irregularCount_ += (e >= 0 && e != 6) - (equivalent_[size_t(v)] >= 0 && equivalent_[size_t(v)] != 6);
+    equivalent_[size_t(v)] = e;
+  }
+  std::sort(faces.begin(), faces.end());
+  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+  std::vector<CMeshO::VertexPointer> corners;
+  for (auto f : faces) {
+    f->N() = vcg::TriangleNormal(*f).Normalize();
+    for (int z = 0; z < 3; ++z) corners.push_back(f->V(z));
+  }
+  std::sort(corners.begin(), corners.end());
+  corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+  for (auto v : corners) {  // area-weighted, as vcg's PerVertexNormalized
+    CMeshO::CoordType n(0, 0, 0);
+    for (vcg::face::VFIterator<CMeshO::FaceType> vfi(v); !vfi.End(); ++vfi) n += vcg::TriangleNormal(*vfi.F());
+    v->N() = n.Normalize();
+  }
+}
+
 void IrregularEditTool::MeshChanged(MeshModel& m, GLArea* gla) {
-  vcg::tri::UpdateNormal<CMeshO>::PerVertexNormalizedPerFaceNormalized(m.cm);
-  vcg::tri::UpdateBounding<CMeshO>::Box(m.cm);
-  if (session_) RefreshIrregular(m);
+  if (session_) {
+    RefreshAround(m, session_->Touched());
+  } else {  // End: after the compaction
+    vcg::tri::UpdateNormal<CMeshO>::PerVertexNormalizedPerFaceNormalized(m.cm);
+    vcg::tri::UpdateBounding<CMeshO>::Box(m.cm);
+  }
   if (cont_) {
     MLRenderingData::RendAtts atts;
     atts[MLRenderingData::ATT_NAMES::ATT_VERTPOSITION] = true;
@@ -295,9 +334,10 @@ void IrregularEditTool::Decorate(MeshModel& m, GLArea* gla, QPainter* p) {
   glDepthRange(0.0, 0.9995);
   glPointSize(7.0f);
   glBegin(GL_POINTS);
-  for (size_t i = 0; i < irregular_.size(); ++i) {
-    vcg::glColor(irr::LegendColor(equivalentValence_[i]));
-    vcg::glVertex(cm.vert[size_t(irregular_[i])].P());
+  for (size_t i = 0; i < equivalent_.size() && i < cm.vert.size(); ++i) {
+    if (equivalent_[i] < 0 || equivalent_[i] == 6 || cm.vert[i].IsD()) continue;
+    vcg::glColor(irr::LegendColor(equivalent_[i]));
+    vcg::glVertex(cm.vert[i].P());
   }
   glEnd();
 
@@ -395,7 +435,7 @@ void IrregularEditTool::Decorate(MeshModel& m, GLArea* gla, QPainter* p) {
     vcg::glLabel::Mode textMode(messageIsError_ ? vcg::Color4b(255, 90, 70, 255) : vcg::Color4b(240, 240, 240, 255));
     textMode.qFont.setPixelSize(14);
     line(0,
-         QString("%1: %2 irregular vertices%3").arg(kTool).arg(irregular_.size())
+         QString("%1: %2 irregular vertices%3").arg(kTool).arg(irregularCount_)
              .arg(session_->HasPair() ? QString(", pair %1-%2").arg(session_->Lead()).arg(session_->Partner()) : QString()),
          vcg::glLabel::Mode(vcg::Color4b(240, 240, 240, 255)));
     line(1,

@@ -63,10 +63,13 @@ class IrregularEditTool {
   struct View;  // the projection cached by the last Decorate
 
   void Report(bool ok, const std::string& what);
-  /// After a step, a cancellation or an undo: normals, bbox, the irregular set, and MeshLab's
-  /// buffers (positions and connectivity).
+  /// After a step, a cancellation or an undo: normals, bbox and valences around the touched
+  /// vertices (EditSession::Touched), and MeshLab's buffers (positions and connectivity).
   void MeshChanged(MeshModel& m, GLArea* gla);
+  /// The equivalent valence of every vertex (O(n): at Start).
   void RefreshIrregular(MeshModel& m);
+  /// The same for the touched vertices, with the normals of their faces. O(touched).
+  void RefreshAround(MeshModel& m, const std::vector<int>& touched);
   /// The accepted direction nearest to the screen vector (sx, sy) (GL window coordinates).
   void StepToward(double sx, double sy, MeshModel& m, GLArea* gla);
   /// Step(k), its message, and MeshChanged when done.
@@ -77,8 +80,8 @@ class IrregularEditTool {
   std::unique_ptr<Session> session_;
   std::unique_ptr<View> view_;
   MLSceneGLSharedDataContext* cont_ = nullptr;
-  std::vector<int> irregular_;            ///< irregular vertex indices, for drawing
-  std::vector<int> equivalentValence_;    ///< their equivalent valence (legend colour)
+  std::vector<int> equivalent_;  ///< equivalent valence per vertex (legend colour; 6 regular, -1 none)
+  int irregularCount_ = 0;
   std::string message_;                   ///< drawn in the viewport
   std::vector<std::string> pendingLog_;   ///< lines for MeshLab's log, written by Decorate
   bool messageIsError_ = false;
