@@ -11,6 +11,7 @@
 #endif
 #include <meshlab/glarea.h>
 
+#include <QFontMetrics>
 #include <QKeyEvent>
 #include <QMouseEvent>
 #include <QPainter>
@@ -80,7 +81,7 @@ bool IrregularEditTool::Start(MeshModel& m, GLArea* gla, MLSceneGLSharedDataCont
   if (selected == 2) {
     irr::Result r = session_->PickFromSelection();
     Report(bool(r), r ? "pair picked from the selection: vertices " + std::to_string(session_->Lead()) + " and " +
-                            std::to_string(session_->Partner())
+                            std::to_string(session_->Partner()) + "; " + AcceptedText()
                       : "the selection is not a pair: " + r.reason);
   } else {
     message_ = "click near an irregular vertex to pick a pair";
@@ -211,8 +212,22 @@ void IrregularEditTool::StepToward(double sx, double sy, MeshModel& m, GLArea* g
 void IrregularEditTool::DoStep(int k, MeshModel& m, GLArea* gla) {
   irr::Result r = session_->Step(k);
   const std::string dir = "step in direction " + std::to_string(k + 1);
-  Report(bool(r), r ? dir + " done: " + session_->Message() : dir + ": " + r.reason);
-  if (r) MeshChanged(m, gla);
+  if (r) {
+    const std::string msg = session_->Message();
+    Report(true, dir + " done: " + msg + "; " + AcceptedText());
+    MeshChanged(m, gla);
+  } else {  // EditSession's reason may name the direction already
+    const std::string again = "direction " + std::to_string(k + 1) + " refused: ";
+    const bool named = r.reason.compare(0, again.size(), again) == 0;
+    Report(false, dir + " refused: " + (named ? r.reason.substr(again.size()) : r.reason));
+  }
+}
+
+std::string IrregularEditTool::AcceptedText() {
+  std::string keys;
+  for (const auto& d : session_->Directions())
+    if (d.accepted) keys += (keys.empty() ? "" : " ") + std::to_string(d.k + 1);
+  return "accepted next: " + (keys.empty() ? std::string("none") : keys);
 }
 
 void IrregularEditTool::MousePress(QMouseEvent* e, MeshModel&, GLArea* gla) {
@@ -258,8 +273,9 @@ void IrregularEditTool::KeyPress(QKeyEvent* e, MeshModel& m, GLArea* gla) {
   if (key == Qt::Key_Z && (e->modifiers() & Qt::ControlModifier)) {
     e->accept();
     const bool undone = session_->Undo();
-    Report(undone, session_->Message().empty() ? std::string(undone ? "undone" : "nothing to undo")
-                                               : session_->Message());
+    const std::string msg = session_->Message().empty() ? std::string(undone ? "undone" : "nothing to undo")
+                                                        : session_->Message();
+    Report(undone, undone && session_->HasPair() ? msg + "; " + AcceptedText() : msg);
     if (undone) MeshChanged(m, gla);
   } else if (key >= Qt::Key_1 && key <= Qt::Key_6) {
     e->accept();
@@ -313,11 +329,12 @@ void IrregularEditTool::Decorate(MeshModel& m, GLArea* gla, QPainter* p) {
         if (best < 0 || d < bestD) best = int(i), bestD = d;
       }
       irr::Result r = session_->PickPartner(best);
-      Report(bool(r), r ? "partner " + std::to_string(best) + " picked" : "partner not picked: " + r.reason);
+      Report(bool(r), r ? "partner " + std::to_string(best) + " picked; " + AcceptedText()
+                        : "partner not picked: " + r.reason);
     } else {
       irr::Result r = session_->PickAt(surface);
       Report(bool(r), r ? "pair picked: vertices " + std::to_string(session_->Lead()) + " and " +
-                              std::to_string(session_->Partner())
+                              std::to_string(session_->Partner()) + "; " + AcceptedText()
                         : "no pair picked: " + r.reason);
     }
   }
@@ -442,7 +459,22 @@ void IrregularEditTool::Decorate(MeshModel& m, GLArea* gla, QPainter* p) {
          "keys 1-6 / arrows: step   drag: move toward cursor   T / Q: cancel triple / quadruple   Ctrl+Z: undo   "
          "Shift+click: partner   Esc: navigate",
          vcg::glLabel::Mode(vcg::Color4b(210, 210, 210, 255)));
-    if (!message_.empty()) line(2, QString::fromStdString(message_), textMode);
+    if (!message_.empty()) {  // word-wrapped to the viewport's width
+      const QFontMetrics fm(textMode.qFont);
+      const int width = std::max(200, int(vp[2]) - 20);
+      QString rest = QString::fromStdString(message_), current;
+      int row = 2;
+      for (const QString& word : rest.split(' ')) {
+        const QString next = current.isEmpty() ? word : current + ' ' + word;
+        if (!current.isEmpty() && fm.horizontalAdvance(next) > width) {
+          line(row++, current, textMode);
+          current = word;
+        } else {
+          current = next;
+        }
+      }
+      if (!current.isEmpty()) line(row, current, textMode);
+    }
   }
   for (const std::string& line : pendingLog_) log_(line);  // the pick's line
   pendingLog_.clear();

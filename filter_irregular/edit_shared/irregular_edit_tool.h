@@ -74,6 +74,8 @@ class IrregularEditTool {
   void StepToward(double sx, double sy, MeshModel& m, GLArea* gla);
   /// Step(k), its message, and MeshChanged when done.
   void DoStep(int k, MeshModel& m, GLArea* gla);
+  /// "accepted next: 1 3 4 6": the keys whose step the dry run accepts (the drawn arrows).
+  std::string AcceptedText();
   bool Project(const CMeshO::CoordType& p, double& x, double& y) const;
 
   std::function<void(const std::string&)> log_;

@@ -2,10 +2,13 @@
 """One GUI session of the edit tool "Irregular Vertices: Edit" in a real MeshLab (called by
 edit_test.sh, which provides the X server, the D-Bus session and the settings folder):
 
-  start MeshLab on a PLY whose two selected vertices are a 5-7 pair -> Edit > Irregular
-  Vertices: Edit (the tool picks the pair from the selection; log line "pair picked from the
-  selection") -> a wheel notch over the viewport (keyboard focus; the tool ignores the wheel) -> key <key> <n> times (each must log "step in direction <key> done")
-  -> screenshot (and the README picture) -> File > Export Mesh As... <ply> -> File > Exit
+  start MeshLab on a PLY whose two selected vertices are a 5-7 pair -> (optionally turn and
+  zoom the view) -> Edit > Irregular Vertices: Edit (the tool picks the pair from the
+  selection: log line "pair picked from the selection") -> a wheel notch over the viewport
+  (keyboard focus; the tool ignores the wheel) -> key <key> <n> times (each must log "step in
+  direction <key> done") -> Ctrl+Z (must log "undone") -> key <key> once more -> screenshot
+  (and the README picture) -> a key whose direction is not drawn (not in the logged "accepted
+  next: ..."): must be refused -> File > Export Mesh As... <ply> -> File > Exit
 
 Screenshots of every step go to --out. Exits 1 with a "gui: FAIL ..." line naming the step
 that failed.
@@ -123,10 +126,25 @@ def session(a, a11y, proc):
     if a.readme_png:  # the main window, without the status bar
         x, y, w, h = g.main_frame().extents()
         readme_picture(shot, a.readme_png, "%dx%d+%d+%d" % (w, h - 40, x, y))
+
+    # 4. a direction the tool does not draw (its log lists the accepted ones after each step)
+    # must be refused with a reason and change nothing (the export is checked afterwards)
+    m = re.search(r"accepted next: ([0-9 ]+|none)", tool_lines(g)[-1])
+    if not m:
+        raise GuiError("the last step's log line does not list the accepted directions: '%s'" % tool_lines(g)[-1])
+    accepted = m.group(1).split() if m.group(1) != "none" else []
+    refused = [k for k in "123456" if k not in accepted]
+    log("accepted directions %s, drawn as arrows; trying a refused one: %s" % (accepted, refused[:1]))
+    if refused:
+        k = refused[0]
+        press(k, "step %s (not drawn)" % k,
+              lambda ln: ("step in direction %s refused: " % k) in ln)
+        time.sleep(1.0)
+        g.shot("refused_step")
     with open(os.path.join(a.out, "meshlab_gui_log.txt"), "w") as f:
         f.write(g.log_text().replace("\u2028", "\n") + "\n")
 
-    # 4. export and quit
+    # 5. export and quit
     export_mesh(g, a.ply, ())
     quit_meshlab(g, proc)
 
