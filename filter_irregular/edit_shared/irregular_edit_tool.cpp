@@ -159,8 +159,35 @@ void IrregularEditTool::RefreshAround(MeshModel& m, const std::vector<int>& touc
   }
 }
 
+bool IrregularEditTool::CompactIfNeeded(MeshModel& m) {
+  CMeshO& cm = m.cm;
+  if (size_t(cm.vn) == cm.vert.size() && size_t(cm.fn) == cm.face.size()) return false;
+  // MeshLab's renderer (vcg's buffer manager) reads face[0..fn) and vert[0..vn): a mesh with
+  // deleted elements crashes it, so the mesh is compacted before MeshLab sees it. The
+  // session's journals are indexed by element, so the session restarts on the compact mesh
+  // with the pair remapped, and the undo history so far is lost (reported).
+  const int lead = session_->Lead(), partner = session_->Partner();
+  vcg::tri::Allocator<CMeshO>::PointerUpdater<CMeshO::VertexPointer> pu;
+  vcg::tri::Allocator<CMeshO>::CompactVertexVector(cm, pu);
+  vcg::tri::Allocator<CMeshO>::CompactFaceVector(cm);
+  vcg::tri::UpdateTopology<CMeshO>::FaceFace(cm);
+  vcg::tri::UpdateTopology<CMeshO>::VertexFace(cm);
+  auto remap = [&pu](int v) { return v >= 0 && size_t(v) < pu.remap.size() && pu.remap[size_t(v)] < pu.remap.size()
+                                         ? int(pu.remap[size_t(v)]) : -1; };
+  const int nl = pu.remap.empty() ? lead : remap(lead), np = pu.remap.empty() ? partner : remap(partner);
+  session_.reset(new Session(cm));
+  if (nl >= 0 && session_->PickVertex(nl) && np >= 0) session_->PickPartner(np);
+  pendingLog_.push_back(std::string(kTool) + ": the step deleted mesh elements; the mesh was compacted for MeshLab's "
+                        "renderer, which clears the undo history");
+  return true;
+}
+
 void IrregularEditTool::MeshChanged(MeshModel& m, GLArea* gla) {
-  if (session_) {
+  if (session_ && CompactIfNeeded(m)) {
+    vcg::tri::UpdateNormal<CMeshO>::PerVertexNormalizedPerFaceNormalized(m.cm);
+    vcg::tri::UpdateBounding<CMeshO>::Box(m.cm);
+    RefreshIrregular(m);
+  } else if (session_) {
     RefreshAround(m, session_->Touched());
   } else {  // End: after the compaction
     vcg::tri::UpdateNormal<CMeshO>::PerVertexNormalizedPerFaceNormalized(m.cm);
@@ -243,15 +270,30 @@ void IrregularEditTool::MouseMove(QMouseEvent* e, MeshModel& m, GLArea* gla) {
   const vcg::Point2f at = QTLogicalToOpenGL(gla, e->pos());
   if (!dragging_ && std::hypot(at.X() - pressAt_.x(), at.Y() - pressAt_.y()) < 6) return;
   dragging_ = true;
-  // Step from the moved vertex toward the cursor while it is farther than a step away on
-  // screen: one step per mouse event, so a long drag gives a sequence of steps.
-  std::vector<irr::EditDirection<CMeshO::CoordType>> dirs = session_->Directions();
-  if (dirs.empty()) return;
-  double vx = 0, vy = 0;
-  if (!Project(dirs[0].from, vx, vy)) return;
-  const double dx = at.X() - vx, dy = at.Y() - vy;
-  if (std::hypot(dx, dy) < kDragPixels) return;
-  StepToward(dx, dy, m, gla);
+  // One step per mouse event, greedily: the accepted direction that brings the pair's
+  // midpoint nearest to the cursor on screen, and only if it gets nearer by a pixel. The
+  // strict decrease keeps a drag from oscillating (the lead and its partner swap roles
+  // between steps, so "the direction nearest in angle" can undo the previous step).
+  const std::vector<irr::EditDirection<CMeshO::CoordType>> dirs = session_->Directions();
+  const CMeshO& cm = m.cm;
+  auto pos = [&cm](int v, const CMeshO::CoordType& fallback) {
+    return v >= 0 && size_t(v) < cm.vert.size() && !cm.vert[size_t(v)].IsD() ? cm.vert[size_t(v)].cP() : fallback;
+  };
+  auto distance = [&](const CMeshO::CoordType& p) {
+    double x = 0, y = 0;
+    return Project(p, x, y) ? std::hypot(at.X() - x, at.Y() - y) : 1e30;
+  };
+  const CMeshO::CoordType now = (pos(session_->Lead(), {}) + pos(session_->Partner(), {})) / 2;
+  const double d0 = distance(now);
+  if (d0 < kDragPixels) return;
+  int best = -1;
+  double bestD = d0 - 1.0;
+  for (const auto& d : dirs) {
+    if (!d.accepted) continue;
+    const double d1 = distance((pos(d.lead, d.to) + pos(d.partner, d.to)) / 2);
+    if (d1 < bestD) best = d.k, bestD = d1;
+  }
+  if (best >= 0) DoStep(best, m, gla);
 }
 
 void IrregularEditTool::MouseRelease(QMouseEvent* e, MeshModel&, GLArea* gla) {

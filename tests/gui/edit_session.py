@@ -8,7 +8,10 @@ edit_test.sh, which provides the X server, the D-Bus session and the settings fo
   (keyboard focus; the tool ignores the wheel) -> key <key> <n> times (each must log "step in
   direction <key> done") -> Ctrl+Z (must log "undone") -> key <key> once more -> screenshot
   (and the README picture) -> a key whose direction is not drawn (not in the logged "accepted
-  next: ..."): must be refused -> File > Export Mesh As... <ply> -> File > Exit
+  next: ..."): must be refused -> File > Export Mesh As... <ply> -> arrow key Left (a
+  drawn direction) and Ctrl+Z -> a mouse drag (at least one step toward the cursor) and
+  Ctrl+Z as many times (unless the tool logs that it compacted the mesh, which clears the
+  undo history) -> File > Exit
 
 Screenshots of every step go to --out. Exits 1 with a "gui: FAIL ..." line naming the step
 that failed.
@@ -144,8 +147,51 @@ def session(a, a11y, proc):
     with open(os.path.join(a.out, "meshlab_gui_log.txt"), "w") as f:
         f.write(g.log_text().replace("\u2028", "\n") + "\n")
 
-    # 5. export and quit
+    # 5. export (the state the check compares with the reference)
     export_mesh(g, a.ply, ())
+
+    # 6. an arrow key (mapped to the drawn direction nearest on screen) and a mouse drag (steps
+    # toward the cursor), each undone with Ctrl+Z. A step that deletes mesh elements makes the
+    # tool compact the mesh for MeshLab's renderer, which clears the undo history (the tool
+    # logs it): then Ctrl+Z must answer "nothing to undo". MeshLab must survive all of it.
+    any_done = re.compile(r"step in direction ([1-6]) done")
+    compacted = "clears the undo history"
+
+    def move_then_undo(what, act):
+        before = len(tool_lines(g))
+        act()
+        time.sleep(1.0)
+        g.check_alive(what)
+        new = tool_lines(g)[before:]
+        for ln in new:
+            log("%s: %s" % (what, ln))
+            if "picked" in ln:
+                raise GuiError("%s picked instead of moving: '%s'" % (what, ln))
+        done = [ln for ln in new if any_done.search(ln)]
+        if not done:
+            raise GuiError("%s moved nothing (log: %s)" % (what, new[-1:] or "nothing"))
+        cleared = any(compacted in ln for ln in new)
+        undoable = 0 if cleared else len(done)
+        for i in range(undoable):
+            press("ctrl+z", "Ctrl+Z %d of %d after %s" % (i + 1, undoable, what), lambda ln: "undone" in ln)
+        if cleared:
+            log("%s deleted elements: the mesh was compacted and the undo history cleared" % what)
+
+    move_then_undo("arrow key Left", lambda: g.key("Left"))
+
+    def drag():
+        x, y, w, h = g.main_frame().extents()
+        cx, cy = x + int(0.3 * w), y + int(0.45 * h)
+        run("xdotool", "mousemove", "--sync", str(cx), str(cy))
+        run("xdotool", "mousedown", "1")
+        for k in range(1, 13):
+            run("xdotool", "mousemove", "--sync", str(cx - 20 * k), str(cy + 10 * k))
+            time.sleep(0.25)
+        run("xdotool", "mouseup", "1")
+    move_then_undo("the mouse drag", drag)
+    g.shot("after_arrow_and_drag")
+
+    # 7. quit
     quit_meshlab(g, proc)
 
 
