@@ -14,7 +14,10 @@
 //  * An undo stack: each step or cancellation runs on its own MeshEditor, whose journal
 //    (journal.h) is that step's undo entry; Undo rolls the newest one back, restoring positions,
 //    connectivity, attributes and the picked pair bit for bit. Beyond opt.undoDepth entries the
-//    oldest journal is dropped (its edit becomes permanent), so memory stays bounded.
+//    oldest journal is dropped (its edit becomes permanent), so memory stays bounded. Redo
+//    replays an undone action on the bit-identical state it ran on.
+//  * Spare capacity in m.vert / m.face (Reserve), so that a split in a step never makes vcg's
+//    Allocator reallocate and re-point every face (O(F)) in the middle of a key press.
 //
 // The dry run of a step. Directions() tries each of the six moves on the mesh itself through a
 // journal checkpoint and rolls it back (the mechanism that makes every refused operation all or
@@ -23,14 +26,20 @@
 // (CompositePredictor::PredictMovePair) copies 13 and then 26 rings around the pair for each
 // direction and is exact only when two region sizes agree; the trial costs one step, which is
 // cheaper and never disagrees. Between two calls of the public API the mesh is always as the
-// last Step / Undo left it. Directions() are cached until the mesh or the pair changes.
+// last Step / Undo left it. Directions() are cached until the mesh or the pair changes;
+// Direction(k) computes one, for a GUI that spreads the trials over idle ticks.
+// Cost (bench/bench_edit_session.cpp, 1M-face torus): an adjacent 5-7 pair's key press (Step +
+// the six trials of the next Directions) is about 1 ms (median); a pair far apart moves by the
+// sec. 7.1.1 pipeline of composite_ops.h, whose single step costs tens of ms (not O(mesh):
+// the same on 100k faces), so its six trials take hundreds of ms.
 //
 // Direction k is the Move Pair filter's `direction` parameter (filter_composite.cpp passes it
 // unchanged to CompositeOperations::MovePair): for an adjacent 5-7 pair the atomic move k of
 // atomic_ops.h (0..5 counter-clockwise around the v5 from the v7, fig. 6); for any other pair
 // the lead moves toward its neighbour k counted counter-clockwise from its neighbour of
 // smallest index (sec. 7.1.1, fig. 10). The GUI never needs to know which: it draws the arrow
-// from `from` to `to` and maps arrow keys and drags through DirectionToward.
+// from `from` to `to` and maps arrow keys and drags through DirectionToward. Messages number
+// the directions 1..6 (k + 1), like the keys 1-6 of the tool.
 //
 // Preconditions: FF and VF adjacency up to date on a manifold, consistently oriented mesh
 // (as for MeshEditor); the mesh is edited only through this session while it lives.
@@ -91,6 +100,7 @@ class EditSession {
   explicit EditSession(MeshType& m, EditSessionOptions opt = EditSessionOptions())
       : m_(m), opt_(opt), original_(m), grid_(m) {
     opt_.undoDepth = std::max(1, opt_.undoDepth);
+    Reserve();
   }
 
   // --- picking
@@ -171,12 +181,25 @@ class EditSession {
   /// mesh or the pair changes; computing them costs six trial steps (see the header).
   std::vector<EditDirection<CoordType>> Directions() {
     if (!HasPair()) return {};
-    if (dirsValid_) return dirs_;
-    dirs_.clear();
-    for (int k = 0; k < 6; ++k) dirs_.push_back(Trial(k));
-    dirsValid_ = true;
+    for (int k = 0; k < 6; ++k) Direction(k);
     return dirs_;
   }
+  /// Direction k alone (0..5), its dry run cached like Directions(): a GUI can spread the six
+  /// trials over idle ticks when one step is expensive (a pair far apart, sec. 7.1.1).
+  /// Without a pair, or for k outside 0..5: refused, with the reason.
+  EditDirection<CoordType> Direction(int k) {
+    if (!HasPair() || k < 0 || k > 5) {
+      EditDirection<CoordType> d;
+      d.k = k;
+      d.reason = HasPair() ? Str("direction ", k + 1, " does not exist: the directions are 1 to 6") : NoPair().reason;
+      return d;
+    }
+    if (dirs_.size() != 6) dirs_.assign(6, EditDirection<CoordType>()), known_.assign(6, 0);
+    if (!known_[size_t(k)]) dirs_[size_t(k)] = Trial(k), known_[size_t(k)] = 1;
+    return dirs_[size_t(k)];
+  }
+  /// True when Directions() would return without running a trial.
+  bool DirectionsKnown() const { return HasPair() && known_.size() == 6 && std::count(known_.begin(), known_.end(), 1) == 6; }
   /// The accepted direction whose drawn arrow (projected by `project`) is closest in angle to
   /// the screen vector `screen` (arrow keys, mouse drag); -1 if none (no pair, nothing
   /// accepted, a zero screen vector). Ties: the smaller k.
@@ -217,12 +240,13 @@ class EditSession {
   /// follows the moved vertices. Refused, with the mesh bit-identical, with Message() saying why.
   Result Step(int k) {
     if (!HasPair()) return Say(NoPair());
-    if (k < 0 || k > 5) return Say(Result::Fail(Str("direction ", k, " does not exist: the directions are 0 to 5")));
+    if (k < 0 || k > 5) return Say(Result::Fail(Str("direction ", k + 1, " does not exist: the directions are 1 to 6")));
     Entry e = Begin();
     std::vector<int> before = PairRegion(lead_, partner_);
     CompositeOutcome o = Ops(*e.ed, &original_, CompositeOpt()).MovePair(lead_, partner_, k, 1);
     if (!o) return Say(Result::Fail(Str("direction ", k + 1, " refused: ", o.result.reason)));
     const int l0 = lead_, p0 = partner_;
+    e.action = Action::Step, e.k = k;
     lead_ = o.lead;
     partner_ = o.partner;
     Push(std::move(e), before, PairRegion(lead_, partner_));
@@ -275,6 +299,7 @@ class EditSession {
     lead_ = e.lead;
     partner_ = e.partner;
     touched_ = e.touched;
+    redo_.push_back(Redoable{e.action, e.k, e.lead, e.partner});
     undo_.pop_back();
     Invalidate();
     grid_.Refresh(touched_);
@@ -282,6 +307,24 @@ class EditSession {
     return true;
   }
   int UndoDepth() const { return int(undo_.size()); }
+  /// Redoes the last undone step or cancellation (the mesh is bit-identical to the state it
+  /// ran on, so running it again gives the same result); false when there is none, or when
+  /// the pair was picked again or another edit came in between (those forget the redo list).
+  bool Redo() {
+    if (redo_.empty() || redo_.back().lead != lead_ || redo_.back().partner != partner_) {
+      redo_.clear();
+      Say(Result::Fail("nothing to redo"));
+      return false;
+    }
+    const Redoable r = redo_.back();
+    redo_.pop_back();
+    std::vector<Redoable> rest;
+    rest.swap(redo_);
+    Result done = r.action == Action::Step ? Step(r.k) : r.action == Action::Triple ? CancelTriple() : CancelQuadruple();
+    if (done) redo_.swap(rest);
+    return done.ok;
+  }
+  int RedoDepth() const { return int(redo_.size()); }
   /// The last refusal or success message, for the viewport and the log.
   const std::string& Message() const { return message_; }
   /// The vertices the last step, cancellation or undo may have changed (positions, valences;
@@ -297,7 +340,11 @@ class EditSession {
 
  private:
   /// One undo entry: the journal of one step, and the pair before it.
+  /// What an entry did, to redo it: a step in direction k, or a cancellation.
+  enum class Action { Step, Triple, Quadruple };
   struct Entry {
+    Action action = Action::Step;
+    int k = -1;
     std::unique_ptr<Editor> ed;
     typename Editor::Checkpoint start;
     int lead = -1, partner = -1;
@@ -336,7 +383,7 @@ class EditSession {
   void EnsureGrid() {
     if (!grid_.Built()) grid_.Build(opt_.pickRadius);
   }
-  void Invalidate() { dirsValid_ = false; }
+  void Invalidate() { known_.assign(6, 0); }
 
   CompositeOptions CompositeOpt() const {
     CompositeOptions co;
@@ -419,6 +466,7 @@ class EditSession {
   }
 
   Entry Begin() {
+    Reserve();
     Entry e;
     e.ed.reset(new Editor(m_));
     e.start = e.ed->Mark();
@@ -435,10 +483,29 @@ class EditSession {
     std::sort(touched_.begin(), touched_.end());
     touched_.erase(std::unique(touched_.begin(), touched_.end()), touched_.end());
     e.touched = touched_;
+    redo_.clear();
     undo_.push_back(std::move(e));
     while (int(undo_.size()) > opt_.undoDepth) undo_.pop_front();
     Invalidate();
     grid_.Refresh(touched_);
+  }
+
+  /// Keeps spare capacity in m.vert and m.face, so that a split during a step never
+  /// reallocates them: vcg's Allocator would then walk every face to fix its pointers, O(F) in
+  /// the middle of a step. When fewer than 1024 vertices (2048 faces) are spare, the vectors
+  /// grow by max(4096, size / 8) through the Allocator (which fixes the pointers once) and the
+  /// added elements are truncated again by a journal rollback: the mesh is as it was, with
+  /// room. The only O(mesh) work of a session after its start, once per thousands of
+  /// created vertices.
+  void Reserve() {
+    const bool vert = m_.vert.capacity() - m_.vert.size() < 1024, face = m_.face.capacity() - m_.face.size() < 2048;
+    if (!vert && !face) return;
+    EditJournal<MeshType> j(m_);
+    const typename EditJournal<MeshType>::Checkpoint cp = j.Mark();
+    const size_t hv = std::max<size_t>(4096, m_.vert.size() / 8), hf = std::max<size_t>(8192, m_.face.size() / 8);
+    if (vert) vcg::tri::Allocator<MeshType>::AddVertices(m_, hv);
+    if (face) vcg::tri::Allocator<MeshType>::AddFaces(m_, hf);
+    j.RollbackTo(cp);
   }
 
   /// Direction k tried on the mesh and rolled back (see the header).
@@ -446,6 +513,7 @@ class EditSession {
     EditDirection<CoordType> d;
     d.k = k;
     d.from = d.to = m_.vert[size_t(lead_)].P();
+    Reserve();
     Editor ed(m_);
     const typename Editor::Checkpoint cp = ed.Mark();
     CompositeOutcome o = Ops(ed, &original_, CompositeOpt()).MovePair(lead_, partner_, k, 1);
@@ -474,6 +542,7 @@ class EditSession {
         before.insert(before.end(), r.begin(), r.end());
       }
     Entry e = Begin();
+    e.action = quadruple ? Action::Quadruple : Action::Triple;
     Ops co(*e.ed, &original_, CompositeOpt());
     CompositeOutcome o = quadruple ? co.CancelQuadruple(group) : co.CancelTriple(group);
     if (!o) return o.result;
@@ -499,9 +568,14 @@ class EditSession {
   int lead_ = -1, partner_ = -1;
   std::string message_;
   std::deque<Entry> undo_;
+  struct Redoable {
+    Action action;
+    int k, lead, partner;
+  };
+  std::vector<Redoable> redo_;
   std::vector<int> touched_;
   std::vector<EditDirection<CoordType>> dirs_;
-  bool dirsValid_ = false;
+  std::vector<char> known_ = std::vector<char>(6, 0);  ///< dirs_[k] holds the current state's trial
 };
 
 }  // namespace irregular

@@ -7,6 +7,8 @@
 // Queries read current positions, so a vertex that moved without being re-binned is still
 // found if it moved less than one cell: ForEachNear scans one cell more than the radius needs.
 // Deleted vertices stay binned until refreshed; callers skip them (the query does not).
+// Build reserves room (twice the cells, an eighth more vertices; empty cells are kept) so a
+// refresh does not rehash or reallocate in the middle of an edit.
 // vcg's GridStaticPtr is static (no local update), hence this small hash.
 #pragma once
 
@@ -43,8 +45,11 @@ class PickGrid {
     cell_ = cell > 0 ? cell : 1.5 * meanEdge_;
     if (!(cell_ > 0)) cell_ = 1;
     cells_.clear();
+    key_.reserve(m_.vert.size() + m_.vert.size() / 8 + 1024);
     key_.assign(m_.vert.size(), kNone);
     for (size_t i = 0; i < m_.vert.size(); ++i) Rebin(int(i));
+    // room for new cells, so that a refresh never rehashes the whole table (O(V))
+    cells_.reserve(2 * cells_.size() + 1024);
     built_ = true;
   }
 
@@ -106,7 +111,6 @@ class PickGrid {
           c.pop_back();
           break;
         }
-      if (c.empty()) cells_.erase(it);
     }
     key_[size_t(v)] = kNone;
   }
