@@ -312,7 +312,15 @@ void IrregularEditTool::MouseRelease(QMouseEvent* e, MeshModel&, GLArea* gla) {
 void IrregularEditTool::KeyPress(QKeyEvent* e, MeshModel& m, GLArea* gla) {
   if (!session_) return;
   const int key = e->key();
-  if (key == Qt::Key_Z && (e->modifiers() & Qt::ControlModifier)) {
+  const bool ctrl = (e->modifiers() & Qt::ControlModifier) != 0;
+  if ((key == Qt::Key_Y && ctrl) || (key == Qt::Key_Z && ctrl && (e->modifiers() & Qt::ShiftModifier))) {
+    e->accept();
+    const bool redone = session_->Redo();
+    const std::string msg = redone ? "redone: " + session_->Message()
+                                   : session_->Message().empty() ? std::string("nothing to redo") : session_->Message();
+    Report(redone, redone && session_->HasPair() ? msg + "; " + AcceptedText() : msg);
+    if (redone) MeshChanged(m, gla);
+  } else if (key == Qt::Key_Z && ctrl) {
     e->accept();
     const bool undone = session_->Undo();
     const std::string msg = session_->Message().empty() ? std::string(undone ? "undone" : "nothing to undo")
@@ -498,8 +506,8 @@ void IrregularEditTool::Decorate(MeshModel& m, GLArea* gla, QPainter* p) {
              .arg(session_->HasPair() ? QString(", pair %1-%2").arg(session_->Lead()).arg(session_->Partner()) : QString()),
          vcg::glLabel::Mode(vcg::Color4b(240, 240, 240, 255)));
     line(1,
-         "keys 1-6 / arrows: step   drag: move toward cursor   T / Q: cancel triple / quadruple   Ctrl+Z: undo   "
-         "Shift+click: partner   Esc: navigate",
+         "keys 1-6 / arrows: step   drag: move toward cursor   T / Q: cancel triple / quadruple   Ctrl+Z / Ctrl+Y: "
+         "undo / redo   Shift+click: partner   Esc: navigate",
          vcg::glLabel::Mode(vcg::Color4b(210, 210, 210, 255)));
     if (!message_.empty()) {  // word-wrapped to the viewport's width
       const QFontMetrics fm(textMode.qFont);

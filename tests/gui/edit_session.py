@@ -6,7 +6,7 @@ edit_test.sh, which provides the X server, the D-Bus session and the settings fo
   zoom the view) -> Edit > Irregular Vertices: Edit (the tool picks the pair from the
   selection: log line "pair picked from the selection") -> a wheel notch over the viewport
   (keyboard focus; the tool ignores the wheel) -> key <key> <n> times (each must log "step in
-  direction <key> done") -> Ctrl+Z (must log "undone") -> key <key> once more -> screenshot
+  direction <key> done") -> Ctrl+Z (must log "undone") -> Ctrl+Y (must log "redone") -> screenshot
   (and the README picture) -> a key whose direction is not drawn (not in the logged "accepted
   next: ..."): must be refused -> File > Export Mesh As... <ply> -> arrow key Left (a
   drawn direction) and Ctrl+Z -> a mouse drag (at least one step toward the cursor) and
@@ -101,7 +101,7 @@ def session(a, a11y, proc):
     time.sleep(0.5)
 
     # 3. the steps: one key press each, each must be logged as done; then Ctrl+Z undoes the
-    # last one and the key redoes it (the export must still be "steps" steps from the start)
+    # last one and Ctrl+Y redoes it (the export must still be "steps" steps from the start)
     done_re = re.compile(r"step in direction %s done" % re.escape(a.key))
 
     def press(keys, what, ok):
@@ -123,7 +123,7 @@ def session(a, a11y, proc):
     for i in range(a.steps):
         press(a.key, "step %d" % (i + 1), done_re.search)
     press("ctrl+z", "Ctrl+Z (undo the last step)", lambda ln: "undone" in ln)
-    press(a.key, "step %d again" % a.steps, done_re.search)
+    press("ctrl+y", "Ctrl+Y (redo it)", lambda ln: "redone: " in ln)
     time.sleep(1.5)  # the repaint with the re-uploaded buffers
     shot = g.shot("after_steps")
     if a.readme_png:  # the main window, without the status bar

@@ -18,7 +18,7 @@
 #    valence, every vertex far from the pair unmoved.
 # Before the tool starts the view is turned (a 200-pixel trackball drag, EDIT_TEST_ROTATE) and
 # zoomed (3 wheel notches, EDIT_TEST_ZOOM) so that the pair faces the camera in the screenshot;
-# after the steps, Ctrl+Z undoes the last one and key 1 redoes it. With
+# after the steps, Ctrl+Z undoes the last one and Ctrl+Y redoes it. With
 # EDIT_TEST_README_PNG=docs/gui_edit_<gen>.png the README picture is written too.
 # Exit status 0 = pass; otherwise a "gui: FAIL ..." or "edit_check: FAIL ..." line says why.
 # 2020 runs a private stage in <out>/stage2020 (Debian's meshlab + system plugins + the two
