@@ -5,13 +5,13 @@ edit_test.sh, which provides the X server, the D-Bus session and the settings fo
   start MeshLab on a PLY whose two selected vertices are a 5-7 pair -> (optionally turn and
   zoom the view) -> Edit > Irregular Vertices: Edit (the tool picks the pair from the
   selection: log line "pair picked from the selection") -> a wheel notch over the viewport
-  (keyboard focus; the tool ignores the wheel) -> key <key> <n> times (each must log "step in
-  direction <key> done") -> Ctrl+Z (must log "undone") -> Ctrl+Y (must log "redone") -> screenshot
-  (and the README picture) -> a key whose direction is not drawn (not in the logged "accepted
-  next: ..."): must be refused -> File > Export Mesh As... <ply> -> arrow key Left (a
-  drawn direction) and Ctrl+Z -> a mouse drag (at least one step toward the cursor) and
-  Ctrl+Z as many times (unless the tool logs that it compacted the mesh, which clears the
-  undo history) -> File > Exit
+  (keyboard focus; the tool ignores the wheel) -> key <key> <n> times (each must log "step
+  in direction <key> done") -> Ctrl+Z (must log "undone") -> Ctrl+Y (must log "redone") ->
+  a key whose direction is not drawn (not in the logged "accepted next: ..."): must be
+  refused -> File > Export Mesh As... <ply> -> arrow key Left (a drawn direction) and Ctrl+Z
+  -> a mouse drag (at least one step toward the cursor) and Ctrl+Z as many times (unless
+  the tool logs that it compacted the mesh, which clears the undo history) -> a click on
+  the mesh (must pick a pair or say why not; screenshot, the README picture) -> File > Exit
 
 Screenshots of every step go to --out. Exits 1 with a "gui: FAIL ..." line naming the step
 that failed.
@@ -125,10 +125,7 @@ def session(a, a11y, proc):
     press("ctrl+z", "Ctrl+Z (undo the last step)", lambda ln: "undone" in ln)
     press("ctrl+y", "Ctrl+Y (redo it)", lambda ln: "redone: " in ln)
     time.sleep(1.5)  # the repaint with the re-uploaded buffers
-    shot = g.shot("after_steps")
-    if a.readme_png:  # the main window, without the status bar
-        x, y, w, h = g.main_frame().extents()
-        readme_picture(shot, a.readme_png, "%dx%d+%d+%d" % (w, h - 40, x, y))
+    g.shot("after_steps")
 
     # 4. a direction the tool does not draw (its log lists the accepted ones after each step)
     # must be refused with a reason and change nothing (the export is checked afterwards)
@@ -190,6 +187,26 @@ def session(a, a11y, proc):
         run("xdotool", "mouseup", "1")
     move_then_undo("the mouse drag", drag)
     g.shot("after_arrow_and_drag")
+
+    # a click on the mesh (the viewport's centre area) picks through the depth buffer: the
+    # tool answers with a pair, or why there is none near the click; never "nothing under
+    # the cursor" (that is the background)
+    x, y, w, h = g.main_frame().extents()
+    before = len(tool_lines(g))
+    g.click_at(x + int(0.3 * w), y + int(0.45 * h))
+
+    def click_answer():
+        g.check_alive("the click on the mesh")
+        new = tool_lines(g)[before:]
+        return new[0] if new else None
+    line = wait_for("the tool's answer to a click on the mesh", click_answer, 10)
+    log("click on the mesh: %s" % line)
+    if not ("pair picked: " in line or "no pair picked: " in line):
+        raise GuiError("a click on the mesh did not reach the surface: '%s'" % line)
+    time.sleep(1.0)
+    shot = g.shot("after_click")
+    if a.readme_png:  # the main window, without the status bar: a pair with its arrows
+        readme_picture(shot, a.readme_png, "%dx%d+%d+%d" % (w, h - 40, x, y))
 
     # 7. quit
     quit_meshlab(g, proc)
