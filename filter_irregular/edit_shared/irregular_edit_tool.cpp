@@ -26,6 +26,7 @@
 
 #include <vcg_ext/irregular/edit_session.h>
 #include <vcg_ext/irregular/legend.h>
+#include <vcg_ext/irregular/mesh_checks.h>
 #include <vcg_ext/irregular/topology.h>
 
 namespace irr = vcg_ext::irregular;
@@ -71,9 +72,17 @@ bool IrregularEditTool::Start(MeshModel& m, GLArea* gla, MLSceneGLSharedDataCont
   m.updateDataMask(MeshModel::MM_FACEFACETOPO | MeshModel::MM_VERTFACETOPO);
   vcg::tri::UpdateTopology<CMeshO>::FaceFace(cm);
   vcg::tri::UpdateTopology<CMeshO>::VertexFace(cm);
-  session_.reset(new Session(cm));
   message_.clear();
   messageIsError_ = false;
+  // EditSession's precondition: a manifold, consistently oriented triangle mesh (the filters
+  // check the same). A mesh that fails gets no session: the tool only says why.
+  irr::Result fit = irr::DiagnoseInput(cm).Verdict();
+  if (!fit) {
+    Report(false, "this mesh cannot be edited: " + fit.reason);
+    if (gla) gla->update();
+    return true;  // stays active to show the reason (MeshLab drops lines logged before paintGL)
+  }
+  session_.reset(new Session(cm));
   pressed_ = dragging_ = pickPending_ = false;
   int selected = 0;
   for (auto& v : cm.vert)
@@ -357,7 +366,12 @@ void IrregularEditTool::KeyPress(QKeyEvent* e, MeshModel& m, GLArea* gla) {
 void IrregularEditTool::Decorate(MeshModel& m, GLArea* gla, QPainter* p) {
   for (const std::string& line : pendingLog_) log_(line);
   pendingLog_.clear();
-  if (!session_) return;
+  if (!session_) {  // no session: the reason, if any
+    if (p && !message_.empty())
+      vcg::glLabel::render2D(p, vcg::glLabel::TOP_LEFT, 0, QString("%1: %2").arg(kTool).arg(QString::fromStdString(message_)),
+                             vcg::glLabel::Mode(vcg::Color4b(255, 90, 70, 255)));
+    return;
+  }
   CMeshO& cm = m.cm;
   glPushMatrix();
   vcg::glMultMatrix(cm.Tr);
