@@ -4,8 +4,9 @@
 #  1. ctest in build/: the GoogleTest unit tests of vcg_ext/ (on MeshLab 2020.09's vcglib), the
 #     randomized operation run, the pymeshlab suite (MeshLab 2025.07 plugin in pymeshlab
 #     2025.7.post1) and the meshlabserver smoke suite (MeshLab 2020.09);
-#  2. one GUI test per MeshLab generation (tests/gui/gui_test.sh): Debian's MeshLab 2020.09 and a
-#     MeshLab 2025.07 GUI built from Debian sid's source (scripts/build_meshlab2025.sh, once);
+#  2. one GUI test per MeshLab generation (tests/gui/gui_test.sh), and one of the edit tool
+#     (tests/gui/edit_test.sh): Debian's MeshLab 2020.09 and a MeshLab 2025.07 GUI built from
+#     Debian sid's source (scripts/build_meshlab2025.sh, once);
 #  3. the wheel: built, installed into a fresh venv and smoke-tested (scripts/test_wheel.sh);
 #  4. the unit tests and the randomized run once more under AddressSanitizer and
 #     UndefinedBehaviorSanitizer, compiled against MeshLab 2025.07's vcglib (build-asan/).
@@ -24,6 +25,12 @@ rm -rf "$gui_out"
 bash "$here/tests/gui/gui_test.sh" 2020 "$here/build/stage/lib/x86_64-linux-gnu/meshlab/plugins/libfilter_irregular.so" \
   "$gui_out/2020"
 bash "$here/tests/gui/gui_test.sh" 2025 "$here/build/plugin2025/libfilter_irregular.so" "$gui_out/2025"
+# the edit tool "Irregular Vertices: Edit": a pair moved three steps by key presses in each GUI
+plugins2020="$here/build/stage/lib/x86_64-linux-gnu/meshlab/plugins"
+bash "$here/tests/gui/edit_test.sh" 2020 "$plugins2020/libfilter_irregular.so" "$plugins2020/libedit_irregular.so" \
+  "$gui_out/edit2020"
+bash "$here/tests/gui/edit_test.sh" 2025 "$here/build/plugin2025/libfilter_irregular.so" \
+  "$here/build/plugin2025/libedit_irregular.so" "$gui_out/edit2025"
 stamp gui
 
 bash "$here/scripts/test_wheel.sh"

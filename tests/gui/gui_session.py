@@ -54,7 +54,13 @@ def main():
     ap.add_argument("--menu", required=True)
     ap.add_argument("--filter", required=True)
     ap.add_argument("--readme-png", default="", help="also write a cropped picture of the GUI after Apply here")
-    a = ap.parse_args()
+    return run_meshlab(ap.parse_args(), session)
+
+
+def run_meshlab(a, session_fn):
+    """Starts MeshLab (a.meshlab a.mesh, log in a.out/meshlab.log) with the accessibility bus,
+    runs session_fn(a, a11y, proc), and kills MeshLab if it is still there. Returns the exit
+    status: 0, or 1 after a "gui: FAIL ..." line and a screenshot of the failure."""
     os.makedirs(a.out, exist_ok=True)
     if os.path.exists(a.ply):
         os.remove(a.ply)
@@ -66,7 +72,7 @@ def main():
                             cwd=a.out, start_new_session=True)
     log("started %s (pid %d)" % (a.meshlab, proc.pid))
     try:
-        session(a, a11y, proc)
+        session_fn(a, a11y, proc)
     except Exception as e:
         if not isinstance(e, GuiError):
             import traceback
@@ -88,6 +94,16 @@ def main():
 
 
 def session(a, a11y, proc):
+    g = open_main(a, a11y, proc)
+    apply_filter(a, g)
+    export_mesh(g, a.ply, ("Color", "Quality"))
+    quit_meshlab(g, proc)
+    return g
+
+
+def open_main(a, a11y, proc):
+    """Waits for MeshLab's main window (title a.title), places it at 0,0 in 1600x1000 and waits
+    for the log to report a.mesh opened. Returns the Gui."""
     # 1. main window, by title (xdotool) and on the accessibility bus
     def window():
         if proc.poll() is not None:
@@ -134,7 +150,11 @@ def session(a, a11y, proc):
              lambda: "Opened mesh" in g.log_text() and mesh_name in g.log_text(), 60)
     time.sleep(1.0)  # let the first frame render
     g.shot("loaded")
+    return g
 
+
+def apply_filter(a, g):
+    """Filters > a.menu > a.filter, Apply, Close; the README picture when asked."""
     # 2. the filter, by name, in its submenu of Filters
     where = g.locate_in_menu("Filters", a.filter)
     wanted = ["Filters", a.menu, a.filter]
@@ -185,6 +205,9 @@ def session(a, a11y, proc):
     if a.readme_png:
         readme_picture(shot, a.readme_png)
 
+
+def export_mesh(g, ply, vert_options=()):
+    """File > Export Mesh As... <ply>, with the export options Vert > <vert_options> checked."""
     # 5. File > Export Mesh As...
     g.open_menu_path(["File", "Export Mesh As..."], "menu_export")
     def file_dialog():
@@ -198,7 +221,7 @@ def session(a, a11y, proc):
     g.shot("export_dialog")
     g.click(name_field, "the 'File name:' field")
     g.key("ctrl+a")
-    g.type(a.ply)
+    g.type(ply)
     time.sleep(0.5)
     g.shot("export_path_typed")
     g.key("Return")
@@ -216,7 +239,7 @@ def session(a, a11y, proc):
         return None
     odlg = wait_for("the export options dialog ('Choose Saving Options')", options_dialog, 20)
     vert = odlg.find(role="panel", name="Vert", showing=True, max_depth=3)[0]
-    for label in ("Color", "Quality"):
+    for label in vert_options:
         boxes = vert.find(role="check box", name=label, showing=True)
         if not boxes:
             raise GuiError("no 'Vert > %s' check box in the export options dialog" % label)
@@ -233,18 +256,21 @@ def session(a, a11y, proc):
     # 7. the file: MeshLab logs "Saved Mesh <path>"
     def saved():
         g.check_alive("saving")
-        return "Saved Mesh" in g.log_text() and os.path.exists(a.ply)
+        return "Saved Mesh" in g.log_text() and os.path.exists(ply)
     try:
-        wait_for("'Saved Mesh' in the log and %s on disk" % a.ply, saved, 60)
+        wait_for("'Saved Mesh' in the log and %s on disk" % ply, saved, 60)
     except GuiError as e:
         raise GuiError("file not written: %s" % e)
     size = -1
-    while size != os.path.getsize(a.ply):
-        size = os.path.getsize(a.ply)
+    while size != os.path.getsize(ply):
+        size = os.path.getsize(ply)
         time.sleep(0.5)
-    log("exported %s (%d bytes)" % (a.ply, size))
+    log("exported %s (%d bytes)" % (ply, size))
     g.shot("saved")
 
+
+def quit_meshlab(g, proc):
+    """File > Exit, answering a 'close without saving?' question; MeshLab must quit with 0."""
     # 8. File > Exit; answer a "close without saving?" question if one comes
     g.open_menu_path(["File", "Exit"], "menu_exit")
     end = time.time() + 30
@@ -266,13 +292,13 @@ def session(a, a11y, proc):
     if proc.returncode != 0:
         raise GuiError("MeshLab quit with status %d (see meshlab.log)" % proc.returncode)
     log("MeshLab quit (status 0)")
-    return g
 
 
-def readme_picture(shot, dest):
-    """The main window without the empty bottom rows, reduced to an 8-bit palette PNG."""
+def readme_picture(shot, dest, crop="1600x960+0+0"):
+    """The main window without the empty bottom rows (or the `crop` geometry), reduced to an
+    8-bit palette PNG."""
     os.makedirs(os.path.dirname(os.path.abspath(dest)), exist_ok=True)
-    run("/usr/bin/convert", shot, "-crop", "1600x960+0+0", "+repage",
+    run("/usr/bin/convert", shot, "-crop", crop, "+repage",
         "-dither", "None", "-colors", "256", "-strip", "PNG8:" + dest)
     log("README picture %s (%d KB)" % (dest, os.path.getsize(dest) // 1024))
 

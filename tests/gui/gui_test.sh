@@ -49,18 +49,8 @@ ply=$out/$(basename "${mesh%.*}")_gui$gen.ply
 rm -f "$out"/[0-9][0-9]_*.png "$ply" "$out/meshlab.log" "$out/meshlab_gui_log.txt"   # this test's own files only
 
 # --- tools (Debian bookworm packages, installed when missing) --------------------------------
-need=(xvfb xauth x11-utils xdotool imagemagick dbus dbus-daemon at-spi2-core python3-dbus binutils)
-missing=()
-for p in "${need[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if [ ${#missing[@]} -gt 0 ]; then
-  echo "gui: installing ${missing[*]}"
-  export DEBIAN_FRONTEND=noninteractive
-  apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null ||
-    { apt-get update -qq && apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null; } ||
-    fail "could not install ${missing[*]}"
-fi
+. "$here/tests/gui/gui_common.sh"
+gui_install_tools
 
 # --- the MeshLab to run ------------------------------------------------------------------------
 if [ "$gen" = 2020 ]; then
@@ -71,11 +61,7 @@ if [ "$gen" = 2020 ]; then
   if [ "$plugin" != none ] && ! cmp -s "$plugin" "$pdir/$(basename "$plugin")"; then
     # a private stage with the given plugin (same layout as scripts/build.sh makes)
     stage=$out/stage2020; pdir=$stage/lib/x86_64-linux-gnu/meshlab/plugins
-    rm -rf "$stage"; mkdir -p "$stage/bin" "$pdir"
-    cp /usr/bin/meshlab "$stage/bin/"
-    ln -s /usr/lib/x86_64-linux-gnu/meshlab/libmeshlab-common.so "$stage/lib/x86_64-linux-gnu/meshlab/"
-    for f in /usr/lib/x86_64-linux-gnu/meshlab/plugins/*.so; do ln -s "$f" "$pdir/"; done
-    ln -sf "$plugin" "$pdir/$(basename "$plugin")"
+    gui_stage_2020 "$stage" "$plugin"
     echo "gui: private 2020 stage $stage with $plugin"
   fi
   bin=$stage/bin/meshlab
@@ -83,78 +69,18 @@ if [ "$gen" = 2020 ]; then
 else
   title="MeshLab 2025.07"
   # MeshLab loads only plugins of its own scalar precision; a plugin built for the pymeshlab
-  # 2025.7.post1 wheel uses double. Detected from the vcg types in the plugin's symbols.
-  scalar=${GUI_TEST_SCALAR:-}
-  if [ -z "$scalar" ]; then
-    scalar=float
-    if [ "$plugin" != none ]; then
-      nd=$(nm -D -C "$plugin" | grep -c 'vcg::Point3<double>' || true)
-      nf=$(nm -D -C "$plugin" | grep -c 'vcg::Point3<float>' || true)
-      [ "$nd" -gt "$nf" ] && scalar=double
-    fi
-  fi
+  # 2025.7.post1 wheel uses double.
+  scalar=$(gui_scalar_of "$plugin")
   echo "gui: $scalar scalars (GUI_TEST_SCALAR=float|double overrides)"
-  bash "$here/scripts/build_meshlab2025.sh" "$scalar" || fail "building MeshLab 2025.07 ($scalar) failed"
-  if [ "$scalar" = double ]; then
-    dist=$here/.deps/meshlab2025-build-double/src/distrib; stage=$here/build/stage2025-double
-  else
-    dist=$here/.deps/meshlab2025-build/src/distrib; stage=$here/build/stage2025
-  fi
-  mkdir -p "$stage/plugins"
-  cp -p -u "$dist/meshlab" "$stage/meshlab"   # a copy: MeshLab finds plugins/ next to its own path
-  for l in libmeshlab-common.so libmeshlab-common-gui.so shaders; do ln -sfn "$dist/$l" "$stage/$l"; done
-  find "$stage/plugins" -maxdepth 1 -type l -delete
-  for f in "$dist"/plugins/*.so; do ln -s "$f" "$stage/plugins/"; done
-  [ "$plugin" = none ] || ln -sfn "$plugin" "$stage/plugins/$(basename "$plugin")"
-  bin=$stage/meshlab
+  if [ "$plugin" = none ]; then gui_stage_2025 "$scalar"; else gui_stage_2025 "$scalar" "$plugin"; fi
+  bin=$gui_bin
   readme=${GUI_TEST_README_PNG-}   # e.g. docs/gui_2025_analyze.png to refresh the README picture
   [ "$check" = irregular ] || readme=${GUI_TEST_README_PNG:-}   # no README picture of another filter
 fi
 echo "gui: MeshLab $gen: $bin; plugins: $(ls "$(dirname "$bin")"/plugins 2>/dev/null | wc -l || true) in stage; filter '$menu > $filter'"
 
 # --- private X server, D-Bus session and settings ------------------------------------------------
-tmp=$(mktemp -d /tmp/gui_test.XXXXXX)
-xpid=; dpid=
-cleanup() {
-  [ -n "$dpid" ] && kill "$dpid" 2>/dev/null || true
-  [ -n "$xpid" ] && kill "$xpid" 2>/dev/null || true
-  rm -rf "$tmp"
-}
-trap cleanup EXIT
-mkdir -p "$tmp/home" "$tmp/config/VCG" "$tmp/run"; chmod 700 "$tmp/run"
-# MeshLab's QSettings (organisation VCG, application MeshLab_64bit_fp): the 2025.07 first-start
-# question "Send Anonymous Statistics" is asked while informativeShown is unset; the update
-# check, the statistics and the "congratulations" mail dialog are switched off; the window size
-# is preset (2025.07; 2020.09 is resized with xdotool).
-param() { # name type value
-  printf 'MeshLab%%3A%%3ASystem%%3A%%3A%s="<!DOCTYPE MeshLabSettings>\\n<Param name=\\"MeshLab::System::%s\\" tooltip=\\"\\" description=\\"\\" type=\\"%s\\" value=\\"%s\\"/>\\n"\n' "$1" "$1" "$2" "$3"
-}
-{
-  echo "[General]"
-  echo "informativeShown=true"
-  echo "dontRemindMeToSendEmail=true"
-  echo "dontRemindMeAboutUpgrade=true"
-  param sendAnonymousData RichBool false
-  param checkForUpdate RichBool false
-  param startupWindowWidth RichInt 1600
-  param startupWindowHeight RichInt 1000
-} > "$tmp/config/VCG/MeshLab_64bit_fp.conf"
-cp "$tmp/config/VCG/MeshLab_64bit_fp.conf" "$tmp/config/VCG/MeshLab_64bit_dp.conf"   # double-scalar builds
-export HOME=$tmp/home XDG_CONFIG_HOME=$tmp/config XDG_RUNTIME_DIR=$tmp/run
-unset SESSION_MANAGER WAYLAND_DISPLAY QT_QPA_PLATFORM || true
-
-exec 3>"$tmp/display"
-Xvfb -displayfd 3 -screen 0 1600x1000x24 +extension GLX -nolisten tcp >"$out/xvfb.log" 2>&1 &
-xpid=$!
-exec 3>&-
-for _ in $(seq 100); do [ -s "$tmp/display" ] && break; kill -0 $xpid 2>/dev/null || break; sleep 0.1; done
-[ -s "$tmp/display" ] || fail "Xvfb did not start (see $out/xvfb.log)"
-export DISPLAY=:$(head -1 "$tmp/display")
-# the D-Bus session (for Qt's accessibility bus) starts after DISPLAY is set
-read -r DBUS_SESSION_BUS_ADDRESS dpid < <(dbus-daemon --session --fork --print-address=1 --print-pid=1 | paste -s -d' ')
-export DBUS_SESSION_BUS_ADDRESS
-[ -n "$dpid" ] || fail "dbus-daemon did not start"
-echo "gui: Xvfb $DISPLAY (pid $xpid), D-Bus session (pid $dpid)"
+gui_start_display "$out"
 
 set +e
 /usr/bin/python3 "$here/tests/gui/gui_session.py" --meshlab "$bin" --title "$title" --mesh "$mesh" \
