@@ -6,7 +6,8 @@
 // vertices 0: reduce the model as loaded (no remeshing). A model is a corpus name or a path
 // (containing '/').
 // options (ReductionOptions fields): maxTravel, glideTravel, targetsPerPair, maxSweeps,
-// localRelaxIterations, minAngle, budget (Hausdorff, percent of the diagonal).
+// localRelaxIterations, minAngle, budget (Hausdorff, percent of the diagonal), maxRefusals
+// (maxRefusalsPerRegion; 0: no bound).
 // files: saveRemeshed=<path> writes the remeshed input (OFF), saveResult=<path> the result, for
 // profiling the reduction alone on a fixed input and for comparing two runs byte by byte (with
 // several models, the model's name is appended).
@@ -73,6 +74,7 @@ int main(int argc, char** argv) {
     else if (key == "localRelaxIterations") opt.localRelaxIterations = int(v);
     else if (key == "minAngle") opt.minAngleDeg = v;
     else if (key == "budget") opt.hausdorffBudgetPercent = v;
+    else if (key == "maxRefusals") opt.maxRefusalsPerRegion = int(v);
     else {
       std::fprintf(stderr, "unknown option %s\n", key.c_str());
       return 2;
@@ -80,8 +82,8 @@ int main(int argc, char** argv) {
   }
   if (models.empty())
     models = {"bunny00.off", "armadillo.off", "fandisk.off", "camel.off", "homer.off", "elephant.off", "knot1.off"};
-  std::printf("%-14s %7s %6s %8s %6s %7s %8s %7s %8s %8s %8s %7s\n", "model", "V", "chi", "irr.in", "irr", "irr%",
-              "H%diag", "minang", "<30deg%", "remesh_s", "reduce_s", "retries");
+  std::printf("%-14s %7s %6s %8s %6s %7s %8s %7s %8s %8s %8s %7s %7s\n", "model", "V", "chi", "irr.in", "irr", "irr%",
+              "H%diag", "minang", "<30deg%", "remesh_s", "reduce_s", "retries", "gaveup");
   for (const std::string& name : models) {
     TMesh m;
     const bool path = name.find('/') != std::string::npos;
@@ -105,10 +107,10 @@ int main(int argc, char** argv) {
     }
     if (!saveResult.empty()) Save(m, saveResult, name, models.size());
     ShapeMeasures s = MeasureShape(m);
-    std::printf("%-14s %7d %6d %8d %6d %7.2f %8.3f %7.1f %8.2f %8.2f %8.2f %5d%s\n", name.c_str(), m.vn,
+    std::printf("%-14s %7d %6d %8d %6d %7.2f %8.3f %7.1f %8.2f %8.2f %8.2f %5d %4d/%d%s\n", name.c_str(), m.vn,
                 Summarize(m).eulerCharacteristic, r.irregularBefore, r.irregularAfter, 100.0 * r.irregularAfter / m.vn,
                 HausdorffPercent(m, input), s.minAngleDeg, 100 * s.shareBelow30,
-                std::chrono::duration<double>(t1 - t0).count(), std::chrono::duration<double>(t2 - t1).count(), r.budgetRetries, r.allUndone ? " (all undone)" : "");
+                std::chrono::duration<double>(t1 - t0).count(), std::chrono::duration<double>(t2 - t1).count(), r.budgetRetries, int(r.gaveUp.size()), r.gaveUpVertices, r.allUndone ? " (all undone)" : "");
     std::fflush(stdout);
   }
   return 0;

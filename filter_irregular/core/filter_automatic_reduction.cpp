@@ -159,6 +159,15 @@ FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par
            rep.boundaryIrregularBefore, rep.boundaryIrregularAfter, bs.absorbedV5, bs.absorbedV7, bs.absorbedPairs,
            bs.pairsMoved, bs.hops, bs.cancelled);
   ctx.Logf("Why the irregular vertices left stay: %s", rep.leftovers.Summary().c_str());
+  // Bounded effort: one line per region given up (the first kMaxGaveUpLines; all are counted).
+  const size_t kMaxGaveUpLines = 200;
+  if (!rep.gaveUp.empty())
+    ctx.Logf("Gave up on %d regions (%d irregular vertices in them) after %d refused edits each",
+             int(rep.gaveUp.size()), rep.gaveUpVertices, opt.maxRefusalsPerRegion);
+  for (size_t i = 0; i < rep.gaveUp.size() && i < kMaxGaveUpLines; ++i)
+    ctx.Logf("%s", rep.gaveUp[i].Describe().c_str());
+  if (rep.gaveUp.size() > kMaxGaveUpLines)
+    ctx.Logf("... and %d more regions given up", int(rep.gaveUp.size() - kMaxGaveUpLines));
   if (rep.timeLimitReached) ctx.Warnf("Time limit reached: editing stopped early");
   if (rep.globalRelaxUndone) ctx.Logf("The final global relaxation lowered the smallest angle and was undone");
   if (rep.finalSweepsUndone) ctx.Logf("The final local relaxation sweeps overshot the Hausdorff budget or lowered the smallest angle under "
@@ -217,6 +226,8 @@ FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par
   out.SetInt("leftover_boundary", rep.leftovers.boundary);
   out.SetInt("leftover_protected", rep.leftovers.protectedCount);
   out.SetInt("leftover_on_thin_parts", rep.leftovers.onThinPart);
+  out.SetInt("gave_up_regions", int(rep.gaveUp.size()));
+  out.SetInt("gave_up_vertices", rep.gaveUpVertices);
   out.SetInt("budget_retries", rep.budgetRetries);
   out.SetFloat("hausdorff_percent", rep.hausdorffPercent);
   out.SetFloat("min_angle_after", shape.minAngleDeg);

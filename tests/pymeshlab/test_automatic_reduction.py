@@ -170,6 +170,10 @@ def test_deterministic_and_every_parameter_has_its_effect():
     ms_a, a, t0, _ = run()
     ms_b, b, _, _ = run()
     assert_same_state(state(ms_a), state(ms_b), "second run")
+    # bounded effort: regions given up are reported, each around an irregular vertex left
+    for key in ("gave_up_regions", "gave_up_vertices"):
+        assert a[key] == b[key], key
+    assert 0 <= a["gave_up_regions"] <= a["gave_up_vertices"] <= a["interior_irregular_after"]
     input_min = fo.shape_measures(t0)["min_angle"]
     assert a["min_angle_after"] >= min(30, input_min) - 1e-9
     _, short, _, _ = run(maxtravel=1)

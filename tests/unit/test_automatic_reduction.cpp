@@ -473,3 +473,148 @@ INSTANTIATE_TEST_SUITE_P(Corpus, ReductionWithHoles, ::testing::Values("mesh_wit
                            std::string s(i.param);
                            return s.substr(0, s.find('.'));
                          });
+
+// Bounded effort (issue 14, "thin parts make it grind"): on a thin torus (tube radius 0.3, 8
+// edges around: about 2 edge lengths across) with a 5-5-7-7 quadruple whose pairs are 3 steps
+// apart, every edit is refused (a Hausdorff budget nothing can meet). Each pair's v5 (the
+// vertex whose turn transports it) is given up after exactly maxRefusalsPerRegion refused
+// edits, never retried (nothing nearby changes), its log line names it and the thin part,
+// and two runs give identical meshes and reports. Without the bound the same run tries more.
+namespace {
+struct ThinRun {
+  std::vector<int> quadruple;  ///< {a5, a7, b5, b7}
+  ReductionReport rep;
+  test::MeshSnapshot mesh;
+  std::vector<std::vector<int>> regions;  ///< per given-up region: the interior irregular vertices within 2 edges
+};
+ThinRun RunOnAThinTorus(int bound) {
+  ThinRun r;
+  TMesh m;
+  test::RegularTorus(m, 60, 8, 3.f, 0.3f);
+  {
+    MeshEditor<TMesh> ed(m);
+    CompositeOptions co;
+    co.relax = false;  // positions stay on the torus
+    CompositeOutcome q = CompositeOperations<TMesh>(ed, nullptr, co).GenerateQuadruple(30 * 8 + 2, 0, 3);
+    EXPECT_TRUE(q) << q.result.reason;
+    ed.Commit();
+    r.quadruple = q.irregular;
+  }
+  vcg::tri::Allocator<TMesh>::CompactEveryVector(m);
+  test::UpdateTopology(m);
+  EXPECT_EQ(Irregular(m), 4);
+  SurfaceProjector original(m);
+  ReductionOptions opt;
+  opt.hausdorffBudgetPercent = 1e-4;  // no edit can stay this close to the input (the input itself is) ...
+  opt.minAngleDeg = 0;                // ... and none is refused for its angles first
+  opt.maxRefusalsPerRegion = bound;
+  r.rep = AutomaticReduction<TMesh>(m, original, opt).Run();
+  EXPECT_TRUE(r.rep) << r.rep.result.reason;
+  r.mesh = test::Snapshot(m);
+  MeshEditor<TMesh> ed(m);
+  for (const GaveUpRegion& g : r.rep.gaveUp) {
+    std::vector<int> irr;
+    for (int x : KRing(m, {g.vertex}, 2))
+      if (ed.IsLive(x) && !ed.IsBoundary(x) && ed.Valence(x) != 6) irr.push_back(x);
+    r.regions.push_back(irr);
+  }
+  return r;
+}
+}  // namespace
+
+TEST(AutomaticReduction, GivesUpAThinPartAfterExactlyTheBoundOfRefusedEdits) {
+  const int bound = 3;
+  ThinRun a = RunOnAThinTorus(bound);
+  ASSERT_EQ(a.quadruple.size(), 4u);
+  EXPECT_EQ(a.rep.irregularAfter, 4);
+  EXPECT_FALSE(a.rep.allUndone);
+  // both v5 (a5 = quadruple[0], b5 = quadruple[2]; no vertex was deleted, so the indices hold)
+  ASSERT_EQ(a.rep.gaveUp.size(), 2u);
+  const std::set<int> seeds{a.rep.gaveUp[0].vertex, a.rep.gaveUp[1].vertex};
+  EXPECT_EQ(seeds, (std::set<int>{a.quadruple[0], a.quadruple[2]}));
+  std::set<int> inRegions;
+  for (size_t i = 0; i < a.rep.gaveUp.size(); ++i) {
+    const GaveUpRegion& g = a.rep.gaveUp[i];
+    EXPECT_EQ(g.refused, bound) << g.Describe();
+    EXPECT_EQ(g.byReason[int(Refusal::Hausdorff)], bound) << g.Describe();
+    EXPECT_TRUE(g.Thin()) << g.Describe();
+    EXPECT_GT(g.thickness, 1.0);
+    EXPECT_LT(g.thickness, 3.0);
+    EXPECT_EQ(g.irregularAround, int(a.regions[i].size()));
+    EXPECT_GE(g.irregularAround, 2);  // the v5 and its pair's v7
+    inRegions.insert(a.regions[i].begin(), a.regions[i].end());
+    const std::string line = g.Describe();
+    EXPECT_NE(line.find("gave up around vertex " + std::to_string(g.vertex) + " ("), std::string::npos) << line;
+    EXPECT_NE(line.find("after 3 refused edits: thin part"), std::string::npos) << line;
+    EXPECT_NE(line.find("Hausdorff budget 3"), std::string::npos) << line;
+  }
+  EXPECT_EQ(a.rep.gaveUpVertices, int(inRegions.size()));
+  // a given-up region is never retried: the run's refusals are exactly the two bounds
+  EXPECT_EQ(a.rep.undoneHausdorff, 2 * bound);
+  // deterministic: the same mesh and report twice
+  ThinRun b = RunOnAThinTorus(bound);
+  EXPECT_TRUE(a.mesh == b.mesh);
+  ASSERT_EQ(b.rep.gaveUp.size(), a.rep.gaveUp.size());
+  for (size_t i = 0; i < a.rep.gaveUp.size(); ++i) EXPECT_EQ(a.rep.gaveUp[i].Describe(), b.rep.gaveUp[i].Describe());
+  // without the bound the same run keeps trying, and gives nothing up
+  ThinRun unbounded = RunOnAThinTorus(0);
+  EXPECT_GT(unbounded.rep.undoneHausdorff, a.rep.undoneHausdorff);
+  EXPECT_TRUE(unbounded.rep.gaveUp.empty());
+  EXPECT_EQ(unbounded.rep.irregularAfter, 4);
+}
+
+// LonePair (local_cancellation.h) skips the removal search after a pair step only where that
+// search finds nothing: 5-7 pairs of quadruples on a torus, moved step by step in every
+// direction until they meet the other pair, compared with the full search at every step.
+TEST(ReductionParts, LonePairSkipsOnlySearchesThatFindNoRemoval) {
+  TMesh m;
+  test::RegularTorus(m, 72, 24, 3.f, 1.f);
+  SurfaceProjector original(m);
+  {
+    MeshEditor<TMesh> ed(m);
+    CompositeOperations<TMesh> co(ed, &original);
+    for (int ring : {10, 40}) ASSERT_TRUE(co.GenerateQuadruple(ring * 24 + 12, 0, ring == 10 ? 3 : 5));
+    ed.Commit();
+  }
+  vcg::tri::Allocator<TMesh>::CompactEveryVector(m);
+  test::UpdateTopology(m);
+  const ReductionOptions opt;  // the parts keep a reference
+  Parts p(m, original, opt);
+  std::vector<std::pair<int, int>> pairs;
+  for (size_t i = 0; i < m.vert.size(); ++i)
+    if (p.ed.Valence(int(i)) == 5)
+      for (auto* nb : p.ed.Star(int(i)).neighbors)
+        if (p.ed.Valence(p.ed.Index(nb)) == 7) pairs.push_back({int(i), p.ed.Index(nb)});
+  ASSERT_EQ(pairs.size(), 4u);
+  int lone = 0, found = 0;
+  for (auto pr : pairs)
+    for (int dir = 0; dir < 6; ++dir) {
+      const test::MeshSnapshot snap = test::Snapshot(m);
+      auto cp = p.ed.Mark();
+      int a = pr.first, b = pr.second;
+      for (int step = 0; step < 8; ++step) {
+        const bool isLone = p.cancel.LonePair(a, b);
+        bool removal = false;
+        for (int x : {a, b}) {
+          auto cp2 = p.ed.Mark();
+          AtomicOutcome c = p.comp.atomic().FindAndApply(
+              {x}, [&](const std::map<int, int>& bf, const std::map<int, int>& af) { return p.cancel.Reduces(bf, af); },
+              "cancellation", false);
+          p.ed.RollbackTo(cp2);
+          removal = removal || bool(c);
+        }
+        if (isLone) EXPECT_FALSE(removal) << "pair " << a << "-" << b << " direction " << dir << " step " << step;
+        lone += isLone;
+        found += removal;
+        if (removal) break;
+        AtomicOutcome o = p.comp.atomic().MovePair57(a, b, dir);
+        if (!o) break;
+        a = o.irregular[0], b = o.irregular[1];
+      }
+      p.ed.RollbackTo(cp);
+      p.ed.Commit();
+      ASSERT_TRUE(test::Snapshot(m) == snap);
+    }
+  EXPECT_GT(lone, 20);  // the check skips searches ...
+  EXPECT_GT(found, 3);  // ... and pairs that met found removals it did not skip
+}

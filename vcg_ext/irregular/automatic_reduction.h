@@ -192,16 +192,24 @@ class AutomaticReduction {
                                                 : "Moving pairs to cancel them"))
         return false;
       if ((i & 255) == 0 && state_.Done()) return true;
-      if (!state_.IsInteriorIrregular(v) || state_.Frozen(v)) continue;
-      // The per-vertex strategies, cheapest first; the first that edits ends v's turn. A new
-      // strategy is one more line here.
-      if (cancel_.CancelAround(rep, v)) continue;
-      if (travel == 0 || state_.UnchangedSinceFailure(v, travel)) continue;
-      if (ed_.Valence(v) == 5 && transport_.Transport(rep, v, travel)) continue;
-      if (transport_.Isolated(v) && transport_.SplitAndAbsorb(rep, v, std::max(2, travel))) continue;
-      state_.Failed(v);
+      if (!state_.IsInteriorIrregular(v) || state_.Frozen(v) || state_.GivenUp(v)) continue;
+      state_.BeginTurn(v);
+      Turn(rep, v, travel);
+      state_.EndTurn();
     }
     return true;
+  }
+
+  /// v's turn: the per-vertex strategies, cheapest first; the first that edits ends it, and
+  /// so does the region's bound of refused edits (ReductionState::TurnExhausted; the
+  /// strategies check it between attempts). A new strategy is one more line here.
+  void Turn(ReductionReport& rep, int v, int travel) {
+    if (cancel_.CancelAround(rep, v)) return;
+    if (travel == 0 || state_.UnchangedSinceFailure(v, travel) || state_.TurnExhausted()) return;
+    if (ed_.Valence(v) == 5 && transport_.Transport(rep, v, travel)) return;
+    if (state_.TurnExhausted()) return;
+    if (transport_.Isolated(v) && transport_.SplitAndAbsorb(rep, v, std::max(2, travel))) return;
+    state_.Failed(v);
   }
 
   static CompositeOptions Quiet() {
@@ -254,6 +262,29 @@ class AutomaticReduction {
     const std::vector<int> rank = CompactionRank();
     auto remap = [&](int& v) { v = v >= 0 && size_t(v) < rank.size() ? rank[size_t(v)] : -1; };
     for (LeftoverVertex& x : rep.leftovers.vertices) remap(x.vertex), remap(x.partner);
+    ExplainGaveUp(rep, lo);
+    for (GaveUpRegion& g : rep.gaveUp) remap(g.vertex);
+  }
+
+  /// The regions given up that still hold an interior irregular vertex (their own: a region
+  /// whose vertex an edit nearby cancelled is no longer given up), with the irregular
+  /// vertices around and the local thickness; rep.gaveUpVertices counts the distinct interior
+  /// irregular vertices in them. O(regions) plus one grid of the mesh for the thickness.
+  void ExplainGaveUp(ReductionReport& rep, const LeftoverOptions& lo) {
+    rep.gaveUp.clear();
+    LeftoverAnalysis<MeshType> thin(m_, lo);
+    std::vector<int> irregularIn;
+    for (GaveUpRegion g : state_.GaveUpRegions()) {
+      if (!state_.IsInteriorIrregular(g.vertex)) continue;
+      g.irregularAround = 0;
+      for (int x : KRing(m_, {g.vertex}, kRegionRings))
+        if (state_.IsInteriorIrregular(x)) ++g.irregularAround, irregularIn.push_back(x);
+      const double t = thin.Thickness(g.vertex, ed_.Star(g.vertex));
+      if (t < lo.thinEdges) g.thickness = t;
+      rep.gaveUp.push_back(g);
+    }
+    std::sort(irregularIn.begin(), irregularIn.end());
+    rep.gaveUpVertices = int(std::unique(irregularIn.begin(), irregularIn.end()) - irregularIn.begin());
   }
 
   /// Per run-time vertex index, its index after CompactEveryVector (which keeps the order of

@@ -354,6 +354,10 @@ class GuardedEdit {
      : v == GuardVerdict::Boundary ? rep_.undoneBoundary
                                    : rep_.undoneHausdorff)++;
     g_.state().Undone(subjects_);
+    g_.state().Refused(v == GuardVerdict::Frozen     ? Refusal::Frozen
+                       : v == GuardVerdict::Angle    ? Refusal::Angle
+                       : v == GuardVerdict::Boundary ? Refusal::Boundary
+                                                     : Refusal::Hausdorff);
     return false;
   }
   /// The edit is kept: stamps, running count, and (outermost edit) the journal's commit.

@@ -67,6 +67,7 @@ class LocalCancellation {
   /// Applies a removal (sec. 6.2) involving one of the vertices, if one exists; adds what it
   /// changed to touched and relaxes there (unguarded: the caller guards).
   bool RemovalAt(const std::vector<int>& vs, std::vector<int>& touched, bool relax = true) {
+    if (vs.size() == 2 && LonePair(vs[0], vs[1])) return false;
     for (int x : vs) {
       if (!ed_.IsLive(x)) continue;
       AtomicOutcome c = ops_.FindAndApply(
@@ -101,6 +102,40 @@ class LocalCancellation {
 
   std::vector<int> exclude;  ///< irregular vertices a removal must not involve (set by a transport)
 
+  /// True if (a, b) is an adjacent 5-7 pair with no other irregular vertex (nor a boundary
+  /// vertex) within 2 edges of either: then no removal of RemovalAt({a, b}) exists, so the
+  /// search (FindAndApply over the flips and collapses around a and b) can be skipped with the
+  /// same answer. Why: those operations change valences only within 2 edges of a or b; a flip
+  /// lowers its two ends and raises its two opposite vertices by one, a collapse of w into v
+  /// makes v of valence v + w - 4, lowers the two opposite vertices and removes w. With the
+  /// pair as the only irregular vertices touched, making both regular would need the 7 lowered
+  /// and the 5 raised by a flip (its other end then becomes a v5) or a collapse whose survivor
+  /// ends at 6 (from 5 + 7 - 4 = 8, or 6 + d - 4 = d + 2, or 4 + 6 - 4: none is 6 from a 5, 6 or
+  /// 7). A lone 5-7 pair is a dislocation: it cannot vanish by itself. Allocation-free walk
+  /// (the pair step probes call this after every step), O(2-ring).
+  bool LonePair(int a, int b) {
+    if (!ed_.IsLive(a) || !ed_.IsLive(b)) return false;
+    int va = 0, vb = 0;
+    ring_.clear();
+    if (!Walk(a, va, &ring_) || !Walk(b, vb, &ring_)) return false;
+    if (!((va == 5 && vb == 7) || (va == 7 && vb == 5))) return false;
+    const size_t first = ring_.size();
+    for (size_t i = 0; i < first; ++i) {
+      int d = 0;
+      if (ring_[i] == a || ring_[i] == b) continue;
+      if (!Walk(ring_[i], d, &ring_) || d != 6) return false;
+    }
+    for (size_t i = first; i < ring_.size(); ++i) {
+      int d = 0;
+      const int y = ring_[i];
+      if (y == a || y == b) continue;
+      bool seen = false;  // rings of a few dozen vertices: a linear scan beats a set
+      for (size_t j = 0; j < i && !seen; ++j) seen = ring_[j] == y;
+      if (!seen && (!Walk(y, d, nullptr) || d != 6)) return false;
+    }
+    return true;
+  }
+
  private:
   MeshType& m_;
   Editor& ed_;
@@ -108,6 +143,24 @@ class LocalCancellation {
   AtomicOperations<MeshType>& ops_;
   EditGuard<MeshType>& guard_;
   ReductionState<MeshType>& state_;
+  std::vector<int> ring_;  ///< LonePair's buffer, reused across calls
+
+  /// Valence of interior vertex v by walking its faces counter-clockwise (no allocation);
+  /// appends its neighbours to *out if given. False on a boundary or broken fan.
+  bool Walk(int v, int& valence, std::vector<int>* out) {
+    typedef typename MeshType::FaceType FaceType;
+    auto* vp = ed_.V(v);
+    if (vp->cVFp() == nullptr) return false;
+    const Corner<FaceType> start{vp->VFp(), vp->VFi()};
+    Corner<FaceType> c = start;
+    valence = 0;
+    do {
+      if (out) out->push_back(ed_.Index(c.f->V((c.z + 1) % 3)));
+      c = NextCornerCCW(c);
+      if (c.f == nullptr || ++valence > 64) return false;
+    } while (c.f != start.f || c.z != start.z);
+    return true;
+  }
 };
 
 }  // namespace irregular

@@ -54,6 +54,7 @@ class PairTransport {
   bool Transport(ReductionReport& rep, int v5, int v7, int travel, std::vector<int>* touchedOut = nullptr) {
     std::vector<int> targets = NearestIrregular({v5, v7}, travel, opt_.targetsPerPair);
     for (int t : targets) {
+      if (state_.TurnExhausted()) return false;
       const CoordType goal = ed_.V(t)->P();
       if (TryMove(rep, v5, v7, [&](int a, int b) { return StepCloser(a, b, goal); }, travel + 2, rep.transports,
                   touchedOut))
@@ -63,7 +64,7 @@ class PairTransport {
     // pair move parallel-transports it, sec. 6.2) until it meets one that does. This is what
     // empties the walls of 5-7 pairs between differently oriented regular patches.
     for (int dir : {1, 4, 0, 5, 2, 3})
-      if (TryMove(rep, v5, v7, [&](int a, int b) { return ops_.MovePair57(a, b, dir); }, opt_.glideTravel,
+      if (!state_.TurnExhausted() && TryMove(rep, v5, v7, [&](int a, int b) { return ops_.MovePair57(a, b, dir); }, opt_.glideTravel,
                   rep.glides, touchedOut))
         return true;
     return false;
@@ -90,12 +91,13 @@ class PairTransport {
     GuardedEdit<MeshType> g(guard_, rep, {v, w});
     std::vector<int> touched{v, w};
     int cur = v;
-    for (int hop = 0; hop <= radius && !ed_.Adjacent(cur, w); ++hop) {
-      std::unordered_map<int, int> dist = Distances(w, radius + 1);
+    for (int hop = 0; hop <= radius && !ed_.Adjacent(cur, w) && !state_.TurnExhausted(); ++hop) {
+      // the BFS from w stops at cur's layer: only the neighbours closer than cur matter
+      std::unordered_map<int, int> dist = Distances(w, radius + 1, cur);
       const int here = dist.count(cur) ? dist[cur] : radius + 2;
       const int d = ed_.Valence(cur);
       int next = -1;
-      for (int k = 0; k < d && next < 0; ++k) {
+      for (int k = 0; k < d && next < 0 && !state_.TurnExhausted(); ++k) {
         // the neighbour the vertex moves to must be closer to w
         const int to = ops_.NeighbourFrom(cur, -1, d == 5 ? k : k + 1);
         if (to < 0 || !dist.count(to) || dist[to] >= here) continue;
@@ -121,7 +123,8 @@ class PairTransport {
       if (next < 0) break;
       cur = next;
     }
-    if (ed_.IsLive(cur) && ed_.IsLive(w) && ed_.Adjacent(cur, w) && ed_.Valence(cur) + ed_.Valence(w) == 12) {
+    if (!state_.TurnExhausted() && ed_.IsLive(cur) && ed_.IsLive(w) && ed_.Adjacent(cur, w) &&
+        ed_.Valence(cur) + ed_.Valence(w) == 12) {
       const int a5 = ed_.Valence(cur) == 5 ? cur : w, a7 = a5 == cur ? w : cur;
       if (Transport(rep, a5, a7, opt_.maxTravel, &touched) && g.Accept(touched)) {
         ++rep.splitAbsorptions;
@@ -129,9 +132,13 @@ class PairTransport {
       }
     }
     // the report goes back to before the attempt, but keeps what the guard refused in it
-    const int angle = rep.undoneAngle, hausdorff = rep.undoneHausdorff, frozen = rep.undoneFrozen;
+    const int angle = rep.undoneAngle, hausdorff = rep.undoneHausdorff, frozen = rep.undoneFrozen,
+              boundary = rep.undoneBoundary;
     rep = saved;
-    rep.undoneAngle = angle, rep.undoneHausdorff = hausdorff, rep.undoneFrozen = frozen;
+    rep.undoneAngle = angle, rep.undoneHausdorff = hausdorff, rep.undoneFrozen = frozen, rep.undoneBoundary = boundary;
+    // an attempt that edited and is undone whole counts against the region's bound (unless the
+    // bound is what stopped it: then the refusal that reached it was counted already)
+    if (touched.size() > 2 && !state_.TurnExhausted()) state_.Refused(Refusal::NoCancellation);
     g.Undo();
     return false;
   }
@@ -287,11 +294,12 @@ class PairTransport {
     return found;
   }
 
-  /// Graph distances from v, up to radius.
-  std::unordered_map<int, int> Distances(int v, int radius) {
+  /// Graph distances from v, up to radius; with stopAt >= 0, only up to stopAt's layer (every
+  /// vertex closer to v than stopAt is in, and stopAt itself).
+  std::unordered_map<int, int> Distances(int v, int radius, int stopAt = -1) {
     std::unordered_map<int, int> dist{{v, 0}};
     std::vector<int> frontier{v};
-    for (int r = 1; r <= radius; ++r) {
+    for (int r = 1; r <= radius && !(stopAt >= 0 && dist.count(stopAt)); ++r) {
       std::vector<int> next;
       for (int x : frontier)
         for (auto* nb : ed_.Star(x).neighbors) {

@@ -2,9 +2,12 @@
 // what a run reports. Settings only: the run's own state lives in reduction_state.h.
 #pragma once
 
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <map>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "boundary_reduction.h"
@@ -14,6 +17,43 @@
 
 namespace vcg_ext {
 namespace irregular {
+
+/// Why an edit tried in a region was undone: the edit guard's refusals (edit_guard.h), or a
+/// split-and-absorb (pair_transport.h) whose closing cancellation never happened.
+enum class Refusal { Angle = 0, Hausdorff, Frozen, Boundary, NoCancellation };
+constexpr int kRefusalKinds = 5;
+/// A region of the bounded effort: the vertices within this many edges of an irregular vertex
+/// (the edit guard relaxes and judges the 2-ring of what an edit touches).
+constexpr int kRegionRings = 2;
+inline const char* RefusalName(Refusal r) {
+  static const char* n[kRefusalKinds] = {"angle", "Hausdorff budget", "protected selection", "boundary count",
+                                         "no cancellation"};
+  return n[int(r)];
+}
+
+/// A region the run gave up on (bounded effort, issue 14 "thin parts make it grind"): the
+/// irregular vertex whose turns there had maxRefusalsPerRegion edits refused, and why.
+struct GaveUpRegion {
+  int vertex = -1;           ///< the irregular vertex the region is around (index of the returned mesh)
+  int irregularAround = 0;   ///< interior irregular vertices within kRegionRings edges of it, itself included
+  int refused = 0;           ///< edits refused there (= the bound when it was given up)
+  int byReason[kRefusalKinds] = {0, 0, 0, 0, 0};  ///< those refusals by Refusal
+  double thickness = std::numeric_limits<double>::infinity();  ///< local thickness in mean edge lengths
+                             ///< (leftover_reasons.h); inf: not a thin part
+  bool Thin() const { return thickness < std::numeric_limits<double>::infinity(); }
+  /// "gave up around vertex 812 (3 irregular vertices) after 12 refused edits: thin part (1.9
+  /// edge lengths across); Hausdorff budget 9, angle 3"
+  std::string Describe() const {
+    std::ostringstream o;
+    o << "gave up around vertex " << vertex << " (" << irregularAround << " irregular vertices) after " << refused
+      << " refused edits: ";
+    if (Thin()) o << "thin part (" << (std::round(thickness * 10) / 10) << " edge lengths across); ";
+    const char* sep = "";
+    for (int k = 0; k < kRefusalKinds; ++k)
+      if (byReason[k]) o << sep << RefusalName(Refusal(k)) << ' ' << byReason[k], sep = ", ";
+    return o.str();
+  }
+};
 
 /// User settings of AutomaticReduction. Every field is read by the run; defaults in comments
 /// are the filter's defaults unless the filter sets the field itself (filter_automatic_reduction.cpp).
@@ -40,6 +80,10 @@ struct ReductionOptions {
   int targetsPerPair = 4;               ///< default 4: nearest irregular vertices a pair tries to reach, per round
   // --- the driver (automatic_reduction.h)
   int maxSweeps = 12;                   ///< default 12: passes over the irregular vertices
+  int maxRefusalsPerRegion = 12;        ///< default 12: once this many edits tried around an irregular vertex
+                                        ///< (in its turns) were refused, the region is given up, and retried only
+                                        ///< after an edit nearby was kept (0: no bound). Counts attempts, not
+                                        ///< seconds, so runs stay deterministic
   double minSweepGainPercent = 1;       ///< default 1: stop when a pass removes no more than this share
   RelaxMode finalRelax = RelaxMode::Local;  ///< default Local: final relaxation of the whole mesh: local sweeps,
                                             ///< or a global solve (eq. 5) followed by local sweeps
@@ -90,6 +134,10 @@ struct ReductionReport {
   int boundaryIrregularBefore = 0, boundaryIrregularAfter = 0;  ///< boundary irregular vertices (corner rule,
                                                                 ///< topology.h); irregularBefore/After: interior
   BoundaryReductionReport boundaryStage;  ///< what the boundary stage did, summed over the sweeps
+  /// Regions given up (maxRefusalsPerRegion) that still hold an irregular vertex at the end,
+  /// in increasing vertex order; gaveUpVertices: the distinct interior irregular vertices in them.
+  std::vector<GaveUpRegion> gaveUp;
+  int gaveUpVertices = 0;
   LeftoverReport leftovers;  ///< why each irregular vertex left stays (leftover_reasons.h; boundary ones: "boundary");
                              ///< its vertex indices are those of the returned (compacted) mesh
   explicit operator bool() const { return result.ok; }

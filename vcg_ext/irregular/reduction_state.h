@@ -152,6 +152,60 @@ class ReductionState {
     return true;
   }
 
+  // ------------------------------------------------------------ bounded effort per region
+  /// v's turn in a sweep begins: refused edits now count against v's region.
+  void BeginTurn(int v) { turn_ = v; }
+  /// The turn ends: a region whose refusals reached the bound is given up (stamped now).
+  void EndTurn() {
+    if (turn_ >= 0 && opt_.maxRefusalsPerRegion > 0) {
+      auto it = effort_.find(turn_);
+      if (it != effort_.end() && it->second.refused >= opt_.maxRefusalsPerRegion && it->second.givenUpAt < 0)
+        it->second.givenUpAt = epoch_;
+    }
+    turn_ = -1;
+  }
+  /// The current turn's region has had its bound of refused edits: try nothing more there.
+  bool TurnExhausted() const {
+    if (turn_ < 0 || opt_.maxRefusalsPerRegion <= 0) return false;
+    auto it = effort_.find(turn_);
+    return it != effort_.end() && it->second.refused >= opt_.maxRefusalsPerRegion;
+  }
+  /// An edit tried in the current turn was undone (outside a turn, e.g. type change or the
+  /// boundary stage: not counted).
+  void Refused(Refusal why) {
+    if (turn_ < 0) return;
+    Effort& e = effort_[turn_];
+    ++e.refused;
+    ++e.byReason[int(why)];
+  }
+  /// v's region was given up and no edit was kept within kRegionRings edges of v since:
+  /// trying again would be refused the same way. If an edit was kept there, the region gets
+  /// a fresh bound. O(region).
+  bool GivenUp(int v) {
+    auto it = effort_.find(v);
+    if (it == effort_.end() || it->second.givenUpAt < 0) return false;
+    for (int x : KRing(m_, {v}, kRegionRings))
+      if (StampOf(editedAt_, x) > it->second.givenUpAt) {
+        effort_.erase(it);
+        return false;
+      }
+    return true;
+  }
+  /// The regions given up (run-time indices), with their refusals by reason; irregularAround
+  /// and thickness are left for the caller.
+  std::vector<GaveUpRegion> GaveUpRegions() const {
+    std::vector<GaveUpRegion> out;
+    for (auto& kv : effort_) {
+      if (kv.second.givenUpAt < 0) continue;
+      GaveUpRegion g;
+      g.vertex = kv.first;
+      g.refused = kv.second.refused;
+      std::copy(kv.second.byReason, kv.second.byReason + kRefusalKinds, g.byReason);
+      out.push_back(g);
+    }
+    return out;
+  }
+
   // ------------------------------------------------------------ the whole-run undo
   /// Saves every vertex and face once: O(V + F) memory whatever the number of edits.
   void TakeSnapshot() {
@@ -174,9 +228,17 @@ class ReductionState {
     failedAt_.clear();
     undoneAt_.clear();
     removed_.clear();
+    effort_.clear();
+    turn_ = -1;
   }
 
  private:
+  struct Effort {
+    int refused = 0;                               ///< edits refused in the region's turns
+    int byReason[kRefusalKinds] = {0, 0, 0, 0, 0};
+    long givenUpAt = -1;                           ///< epoch it was given up at (-1: not given up)
+  };
+
   static void Stamp(std::vector<long>& at, int v, long when) {
     if (v < 0) return;
     if (size_t(v) >= at.size()) at.resize(size_t(v) + 1, -1);
@@ -199,6 +261,8 @@ class ReductionState {
   long epoch_ = 0;                  ///< kept edits so far
   std::vector<long> editedAt_, failedAt_;  ///< per vertex: epoch of its last kept edit / failed attempt
   std::map<int, int> undoneAt_;     ///< per vertex: edits the guard undid
+  std::map<int, Effort> effort_;    ///< per irregular vertex whose turns had refusals: the bounded effort
+  int turn_ = -1;                   ///< the vertex whose turn it is (-1: none)
 };
 
 }  // namespace irregular
