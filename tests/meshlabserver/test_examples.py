@@ -17,7 +17,8 @@ EXAMPLE_MESH = {"analyze.mlx": "bunny00.off", "atomic.mlx": "bunny00.off", "rela
                 "reduce.mlx": "bunny00.off", "aggregate.mlx": "bunny00.off", "move_pair.mlx": "knot1.off",
                 "cancel_triple.mlx": "knot1.off", "cancel_quadruple.mlx": "knot1.off", "generate.mlx": "knot1.off",
                 "automatic_reduction.mlx": "bunny00.off", "boundary.mlx": "mesh_with_border.off",
-                "pattern_stripes.mlx": "three_peaks.off", "pattern_zebra.mlx": "bunny00.off"}
+                "pattern_stripes.mlx": "three_peaks.off", "pattern_zebra.mlx": "bunny00.off",
+                "pattern_stars.mlx": "geosphere.off", "pattern_circles.mlx": "blade.off"}
 
 
 def test_every_example_is_in_this_suite():
@@ -275,3 +276,33 @@ def test_pattern_zebra(meshlab, corpus):
     (out,) = r.returned
     assert np.array_equal(m.faces, src.faces) and np.allclose(m.vertices, src.vertices, atol=1e-5)
     check_pattern(out, m, zebra=True)
+
+
+def regions_of_hue(m, hue):
+    """Region ids (face quality) of the faces whose colour has the Pattern filter's hue for stars
+    (orange: red > green > blue) or circles (teal: blue > green > red)."""
+    fp = m.face_props
+    r, g, b = (fp[k].astype(np.int64) for k in ("red", "green", "blue"))
+    mask = (r > g) & (g > b) if hue == "star" else (b > g) & (g > r)
+    return np.unique(np.rint(fp["quality"][mask]).astype(np.int64)), np.unique(np.rint(fp["quality"]).astype(np.int64))
+
+
+def test_pattern_stars(meshlab, corpus):
+    """The geosphere's twelve v5, far apart: twelve isolated stars, one region each; the mesh
+    itself unchanged (the panels go to a new layer, not saved here)."""
+    src, r, m = run_example(meshlab, corpus, "pattern_stars.mlx", mask=("vc", "vq", "fc", "fq"))
+    (out,) = r.returned
+    assert np.array_equal(m.faces, src.faces) and np.allclose(m.vertices, src.vertices, atol=1e-5)
+    assert out["star_seeds"] == out["isolated_star_seeds"] == 12
+    stars, regions = regions_of_hue(m, "star")
+    assert len(stars) == 12 and len(regions) == out["regions"]
+    assert out["panels"] == out["regions"]
+
+
+def test_pattern_circles(meshlab, corpus):
+    """Generate, then pattern (Fig. 14's recipe) on blade: the circles written as face colours are
+    the returned count."""
+    src, r, m = run_example(meshlab, corpus, "pattern_circles.mlx", mask=("vc", "vq", "fc", "fq"))
+    out = r.returned[-1]
+    circles, regions = regions_of_hue(m, "circle")
+    assert out["circles"] == len(circles) > 0 and len(regions) == out["regions"]
