@@ -487,8 +487,9 @@ std::vector<FilterSpec> MakeCatalog() {
       Bool("panels", false, "Panels",
            "Also write a new layer 'panels' in which every region is an inset, extruded panel (geometry replacement, "
            "Fig. 1 middle and right)."),
-      Float("panelInset", 0.15, 0.0, 0.45, "Panel inset",
-            "Panels: inset of each panel's outline, as a fraction of the mean edge length."),
+      Float("panelInset", 0.15, 0.0, 0.25, "Panel inset",
+            "Panels: inset of each panel's outline, as a fraction of the mean edge length (at most 0.25: from about "
+            "0.28 on, the outline of a one-triangle region folds)."),
       Float("panelExtrusion", 0.25, -10.0, 10.0, "Panel extrusion",
             "Panels: extrusion along the normal, as a fraction of the mean edge length (0: flat)."),
   };

@@ -110,6 +110,9 @@ FilterOutcome ApplyPattern(FilterContext& ctx, const ParamValues& par) {
     irr::PanelOptions popt;
     popt.inset = par.Float("panelInset");
     popt.extrude = par.Float("panelExtrusion");
+    // the colours m gets below (m is only painted once nothing can be refused any more)
+    for (size_t r = 0; r < labels.regionKind.size(); ++r)
+      popt.regionColors.push_back(RegionColor(labels.regionKind[r], int(r)));
     panels = irr::BuildPanels(m, labels, popt, *layer);
     if (!panels.ok) return FilterOutcome::Refuse("The panels cannot be made: " + panels.reason + ".");
   }

@@ -29,8 +29,9 @@ CANCEL_QUADRUPLE = "meshing_irregular_cancel_quadruple"
 GENERATE = "meshing_irregular_generate"
 AUTOMATIC = "meshing_irregular_automatic_reduction"
 BOUNDARY = "meshing_irregular_boundary_operation"
+PATTERN = "compute_color_irregular_pattern"
 FILTERS = [ANALYZE, ATOMIC, RELAX, REDUCE, AGGREGATE, MOVE_PAIR, CANCEL_TRIPLE, CANCEL_QUADRUPLE, GENERATE, AUTOMATIC,
-           BOUNDARY]
+           BOUNDARY, PATTERN]
 EDITING = [ATOMIC, REDUCE, AGGREGATE, MOVE_PAIR, CANCEL_TRIPLE, CANCEL_QUADRUPLE, GENERATE, AUTOMATIC]
 
 OPERATIONS = ["5-7 pair move", "v5/v7 move with 5-7 pair generation",

@@ -1,4 +1,4 @@
-"""The plugin as pymeshlab sees it: its eleven filters, every parameter with its Python name, type
+"""The plugin as pymeshlab sees it: its twelve filters, every parameter with its Python name, type
 and default (as README and filter_catalog.cpp state them), a table saying which test exercises
 each parameter (so a parameter added without a test fails here), and the two parameters every
 editing filter shares, 'relax' and 'colorize', checked on each of them."""
@@ -11,7 +11,7 @@ import pytest
 
 import fi_oracle as fo
 from fi_pm import (AGGREGATE, ANALYZE, ATOMIC, AUTOMATIC, BOUNDARY, CANCEL_QUADRUPLE, CANCEL_TRIPLE, FILTERS, GENERATE,
-                   MOVE_PAIR, REDUCE, RELAX, apply, index_by_position, painted, quality, rgb, select, state, tri)
+                   MOVE_PAIR, PATTERN, REDUCE, RELAX, apply, index_by_position, painted, quality, rgb, select, state, tri)
 
 # pymeshlab name -> [(python parameter name, type as pymeshlab prints it, default as printed)]
 EXPECTED = {
@@ -39,6 +39,9 @@ EXPECTED = {
     BOUNDARY: [("operation", "str", "'Absorb into the boundary'"), ("side", "str", "'First boundary neighbour'"),
                ("pairdirection", "str", "'Towards its valence-3 vertex'"), ("steps", "int", "1"),
                ("relax", "bool", "True"), ("colorize", "bool", "True")],
+    PATTERN: [("pattern", "str", "'Stripes'"), ("direction", "int", "0"), ("period", "int", "2"),
+              ("starradius", "int", "3"), ("ringwidth", "int", "1"), ("panels", "bool", "False"),
+              ("panelinset", "float", "0.15"), ("panelextrusion", "float", "0.25")],
 }
 
 # (filter, parameter) -> the tests that run it with other values than the default and check
@@ -107,6 +110,14 @@ EXERCISED = {
     (BOUNDARY, "steps"): ["test_boundary::test_boundary_pairs_generated_moved_and_cancelled"],
     (BOUNDARY, "relax"): ["test_boundary::test_generated_pair_is_absorbed_again"],
     (BOUNDARY, "colorize"): ["test_boundary::test_generated_pair_is_absorbed_again"],
+    (PATTERN, "pattern"): ["test_pattern::test_regular_torus_exact"],
+    (PATTERN, "direction"): ["test_pattern::test_seed_from_the_selected_vertex_and_the_three_directions"],
+    (PATTERN, "period"): ["test_pattern::test_period_three"],
+    (PATTERN, "panelinset"): ["test_pattern::test_stripe_panels_inset_and_extrusion"],
+    (PATTERN, "panelextrusion"): ["test_pattern::test_stripe_panels_inset_and_extrusion"],
+    (PATTERN, "starradius"): ["test_pattern_panels::test_star_seeds_and_isolation_match_an_independent_count"],
+    (PATTERN, "panels"): ["test_pattern_panels::test_star_panels_are_a_new_layer_of_closed_shells"],
+    (PATTERN, "ringwidth"): ["test_pattern_panels::test_circle_ring_width"],
 }
 
 
@@ -121,7 +132,7 @@ def parameter_lists(capfd):
     return out
 
 
-def test_the_plugin_provides_eleven_filters():
+def test_the_plugin_provides_twelve_filters():
     import pymeshlab_irregular
     assert sorted(pymeshlab_irregular.load()) == sorted(FILTERS)
     for name in FILTERS:

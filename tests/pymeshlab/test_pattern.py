@@ -254,7 +254,7 @@ def test_stripe_panels_inset_and_extrusion():
     """Panels of the stripes (a new layer, the mesh itself untouched): one per region; a larger
     inset or extrusion moves the panels' vertices, extrusion 0 keeps them on the surface side."""
     layers = {}
-    for inset, extrusion in ((0.1, 0.0), (0.3, 0.0), (0.1, 0.5)):
+    for inset, extrusion in ((0.1, 0.0), (0.25, 0.0), (0.1, 0.5)):
         ms = load("three_peaks.off")
         source = ms.current_mesh_id()
         out = pattern(ms, panels=True, panelinset=inset, panelextrusion=extrusion)
@@ -263,6 +263,6 @@ def test_stripe_panels_inset_and_extrusion():
         assert sum(out["panel_sides_histogram"]) == out["panels"]
         other = [i for i in range(4) if ms.mesh_id_exists(i) and i != source][0]
         layers[(inset, extrusion)] = ms.mesh(other).vertex_matrix().copy()
-    a, b, c = layers[(0.1, 0.0)], layers[(0.3, 0.0)], layers[(0.1, 0.5)]
+    a, b, c = layers[(0.1, 0.0)], layers[(0.25, 0.0)], layers[(0.1, 0.5)]
     assert a.shape == b.shape and not np.allclose(a, b)
     assert not (a.shape == c.shape and np.allclose(a, c))

@@ -146,3 +146,28 @@ def test_circles_recipe_generate_then_pattern():
     ms2.add_mesh(pymeshlab.Mesh(vertex_matrix=v, face_matrix=f))
     _, after4 = ex.run(ms2, [10 * 40 + 10, 10 * 40 + 30, 30 * 40 + 10, 30 * 40 + 30])
     assert after4["circles"] == 16
+
+
+def test_circle_ring_width():
+    """ringWidth groups rings into bands: around each 5-7 pair of the recipe's two quadruples,
+    width 1 closes rings 2 and 4 (22 and 46 faces), width 2 closes the band of rings 3-4 (80
+    faces), which holds ring 4's faces exactly."""
+    ex = load_example()
+    ms = pymeshlab.MeshSet()
+    v, f = ex.regular_torus()
+    ms.add_mesh(pymeshlab.Mesh(vertex_matrix=v, face_matrix=f))
+    ex.run(ms, [10 * 40 + 10, 30 * 40 + 30])
+    sizes, members = {}, {}
+    for width in (1, 2):
+        out = apply(ms, PATTERN, pattern="Circles", ringwidth=width)
+        region = ms.current_mesh().face_scalar_array().astype(int)
+        counts = np.bincount(region[region >= 0])
+        background = int(np.argmax(counts))
+        sizes[width] = sorted(int(c) for r, c in enumerate(counts) if r != background)
+        members[width] = [set(np.flatnonzero(region == r)) for r in range(len(counts)) if r != background]
+        assert out["circles"] == len(sizes[width])
+    assert sizes[1] == [22] * 4 + [46] * 4
+    assert sizes[2] == [80] * 4
+    ring4 = [s for s in members[1] if len(s) == 46]
+    for s in ring4:
+        assert sum(s <= band for band in members[2]) == 1, "each ring-4 circle lies inside one band of rings 3-4"

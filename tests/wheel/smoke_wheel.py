@@ -19,6 +19,7 @@ import pymeshlab_irregular
 
 EXPECTED_FILTERS = {
     "apply_irregular_relaxation",
+    "compute_color_irregular_pattern",
     "compute_irregular_vertex_analysis",
     "meshing_irregular_aggregation",
     "meshing_irregular_atomic_operation",

@@ -23,9 +23,10 @@
 // a corner is an outline vertex where the region does not hold exactly 3 faces (the
 // straight-line rule, region_outline.h): 6 for a hexagonal cell around a v6, 5 around a v5,
 // 0 for a strip of width one between two straight edge lines.
-// Colour: when `out` has per-face colour, every face of a panel takes the colour of its
-// region's first face in m if m has per-face colour (the Pattern filter colours m first, so
-// panels match the pattern), else PanelPaletteColor(region).
+// Colour: when `out` has per-face colour, every face of a panel takes opt.regionColors[region]
+// when given (the Pattern filter passes the colours it paints m with, so panels match the
+// pattern whatever m's colours were before), else the colour of its region's first face in m
+// if m has per-face colour, else PanelPaletteColor(region).
 //
 // Preconditions: FF (and VF) adjacency up to date on m, a manifold, consistently oriented
 // mesh; labels.faceRegion indexed like m.face. Postconditions: m is not modified; `out` holds
@@ -54,6 +55,7 @@ namespace irregular {
 struct PanelOptions {
   double inset = 0.15;    ///< inset of each panel's outline, as a fraction of the mean edge length
   double extrude = 0.25;  ///< extrusion along the normal, as a fraction of the mean edge length (0: flat; < 0: inwards)
+  std::vector<vcg::Color4b> regionColors;  ///< colour per region id; empty: m's face colour, else a palette
 };
 
 struct PanelReport {
@@ -154,7 +156,9 @@ PanelReport BuildPanels(const MeshType& cm, const PatternLabels& labels, const P
     const int sides = R.Corners();
     if (int(rep.panelSidesHistogram.size()) <= sides) rep.panelSidesHistogram.resize(size_t(sides) + 1, 0);
     rep.panelSidesHistogram[size_t(sides)]++;
-    const vcg::Color4b col = colorIn ? m.face[size_t(fr[0])].C() : PanelPaletteColor(r);
+    const vcg::Color4b col = size_t(r) < opt.regionColors.size() ? opt.regionColors[size_t(r)]
+                             : colorIn                             ? m.face[size_t(fr[0])].C()
+                                                                   : PanelPaletteColor(r);
 
     const int nv = R.Vertices();
     std::vector<C> p((size_t(nv))), n(size_t(nv), C(0, 0, 0));
