@@ -94,8 +94,8 @@ class MeshEditor {
   int Index(const VertexType* v) const { return int(vcg::tri::Index(m_, v)); }
   bool IsLive(int i) const { return i >= 0 && size_t(i) < m_.vert.size() && !m_.vert[size_t(i)].IsD() && m_.vert[size_t(i)].cVFp(); }
   VertexStar<MeshType> Star(int i) { return StarOf<MeshType>(V(i)); }
-  int Valence(int i) { return Star(i).Valence(); }
-  bool IsBoundary(int i) { return Star(i).boundary; }
+  int Valence(int i) { return irregular::Valence<MeshType>(V(i)); }
+  bool IsBoundary(int i) { return OnBoundary<MeshType>(V(i)); }
   /// Smallest valence a vertex may keep: 2 on the boundary (one face), 3 inside.
   static int MinValence(bool boundary) { return boundary ? 2 : 3; }
   /// Is (x, y) an edge with a face on one side only? False if they are not joined.

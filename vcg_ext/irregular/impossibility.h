@@ -136,7 +136,7 @@ class ImpossibilityCheck {
 
  private:
   int Index(const VertexType* v) const { return int(vcg::tri::Index(m_, v)); }
-  int Valence(int v) { return StarOf<MeshType>(&m_.vert[size_t(v)]).Valence(); }
+  int Valence(int v) { return irregular::Valence<MeshType>(&m_.vert[size_t(v)]); }
 
   /// Breadth-first rings from `seeds` (ring 0). freeRings: the largest k such that rings
   /// 1..k hold no boundary vertex and no irregular vertex other than `own` (default: the

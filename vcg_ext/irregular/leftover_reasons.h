@@ -256,7 +256,7 @@ class LeftoverAnalysis {
   /// Vertices within k edges of v with their distance.
   std::unordered_map<int, int> Rings(int v, int k) { return DislocationAnalysis<MeshType>(m_).Distances({v}, k); }
 
-  int Charge(int x) { return 6 - StarOf<MeshType>(V(x)).Valence(); }
+  int Charge(int x) { return 6 - irregular::Valence<MeshType>(V(x)); }
   bool InteriorIrregular(int x) { return DislocationAnalysis<MeshType>(m_).InteriorIrregular(x); }
 
   /// The nearest interior irregular vertex within opt.reach edges outside v's cluster (its

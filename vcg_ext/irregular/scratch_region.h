@@ -181,7 +181,7 @@ class ScratchRegion {
       VertexType& x = mesh.vert[size_t(v)];
       g.p.push_back(x.P());
       g.dead.push_back(x.IsD() ? 1 : 0);
-      g.valence.push_back(x.IsD() ? 0 : StarOf<MeshType>(&x).Valence());
+      g.valence.push_back(x.IsD() ? 0 : irregular::Valence<MeshType>(&x));
     }
     return g;
   }

@@ -108,6 +108,10 @@ VertexStar<MeshType> StarOf(typename MeshType::VertexType* v, int maxValence = 4
   }
   Corner<FaceType> first = c;
   guard = 0;
+  // Most stars have 5-7 corners: one allocation each instead of four growths (StarOf's
+  // allocations were a quarter of Automatic Reduction's time).
+  s.corners.reserve(8);
+  s.neighbors.reserve(9);
   for (;;) {
     s.corners.push_back(c);
     s.neighbors.push_back(c.f->V((c.z + 1) % 3));
@@ -132,8 +136,47 @@ VertexStar<MeshType> StarOf(typename MeshType::VertexType* v, int maxValence = 4
 
 /// Valence (number of incident edges) of v. O(valence). Needs VF and FF.
 template <class MeshType>
-int Valence(typename MeshType::VertexType* v) {
-  return StarOf<MeshType>(v).Valence();
+int Valence(typename MeshType::VertexType* v, int maxValence = 4096) {
+  // StarOf's walk, counting instead of storing: the same value, no allocation.
+  typedef typename MeshType::FaceType FaceType;
+  if (v->cVFp() == nullptr) return 0;
+  const Corner<FaceType> start{v->VFp(), v->VFi()};
+  Corner<FaceType> c = start;
+  int guard = 0;
+  for (;;) {  // rewind clockwise to the boundary, if there is one
+    Corner<FaceType> p = NextCornerCW(c);
+    if (p.f == nullptr) break;
+    c = p;
+    if (c.f == start.f && c.z == start.z) break;
+    if (++guard > maxValence) return 0;
+  }
+  const Corner<FaceType> first = c;
+  int n = 0;
+  guard = 0;
+  for (;;) {
+    ++n;
+    Corner<FaceType> next = NextCornerCCW(c);
+    if (next.f == nullptr) return n + 1;  // the fan's last neighbour
+    c = next;
+    if (c.f == first.f && c.z == first.z) return n;
+    if (++guard > maxValence) return n;
+  }
+}
+
+/// Is v on the boundary (its fan meets a border edge)? StarOf's rewind alone, no allocation.
+template <class MeshType>
+bool OnBoundary(typename MeshType::VertexType* v, int maxValence = 4096) {
+  typedef typename MeshType::FaceType FaceType;
+  if (v->cVFp() == nullptr) return false;
+  const Corner<FaceType> start{v->VFp(), v->VFi()};
+  Corner<FaceType> c = start;
+  for (int guard = 0; guard <= maxValence; ++guard) {
+    Corner<FaceType> p = NextCornerCW(c);
+    if (p.f == nullptr) return true;
+    c = p;
+    if (c.f == start.f && c.z == start.z) return false;
+  }
+  return false;  // StarOf gives up too (a non-manifold walk), with boundary still false
 }
 
 /// The valence eq. 2 counts a vertex against: 6 inside, 4 on the boundary (paper sec. 4).
