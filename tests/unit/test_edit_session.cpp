@@ -430,10 +430,12 @@ TEST(EditSession, CancelsAQuadrupleThroughTheSession) {
   EXPECT_FALSE(s.CancelTriple().ok);  // no v5 or v7 would make a triple: refused, unchanged
   EXPECT_TRUE(test::Snapshot(q.m) == before);
   ASSERT_TRUE(s.CancelQuadruple().ok) << s.Message();
+  EXPECT_TRUE(Compact(q.m));
   EXPECT_TRUE(test::IrregularVertices(q.m).empty());
   EXPECT_FALSE(s.HasPair());
   EXPECT_TRUE(CheckInvariants(q.m).ok);
   ASSERT_TRUE(s.Undo());
+  EXPECT_TRUE(Compact(q.m));
   EXPECT_TRUE(test::Snapshot(q.m) == before);
   EXPECT_EQ(s.Lead(), q.pair5);
 }
@@ -459,6 +461,7 @@ TEST(EditSession, CancelsATripleThroughTheSession) {
   ASSERT_TRUE(s.PickVertex(g.pair5).ok);
   ASSERT_TRUE(s.PickPartner(g.pair7).ok);
   ASSERT_TRUE(s.CancelTriple().ok) << s.Message();
+  EXPECT_TRUE(Compact(m));
   // 12 v5 again: the triple left one v5, the session's new lead
   std::vector<int> irr = test::IrregularVertices(m);
   EXPECT_EQ(irr.size(), 12u);
@@ -521,6 +524,46 @@ TEST(EditSession, OptionalComponentsLikeCMeshO) {
   EXPECT_TRUE(CheckInvariants(m).ok);
   while (s.Undo()) {
   }
+  EXPECT_TRUE(OcfState(m) == start);
+}
+
+// The compaction on optional components (vector_ocf: VF / FF adjacency and wedge texture
+// coordinates live beside the vectors, and truncating drops them): random steps, deleting ones
+// among them, keep the mesh compact, and undoing all of them restores it bit for bit.
+TEST(EditSession, OptionalComponentsDeletingStepsUndo) {
+  QuadMesh q;
+  MakeQuadruple(q, 5, false);
+  test::TOMesh m;
+  m.vert.EnableVFAdjacency();
+  m.vert.EnableMark();
+  m.face.EnableFFAdjacency();
+  m.face.EnableVFAdjacency();
+  m.face.EnableMark();
+  m.face.EnableWedgeTexCoord();
+  m.face.EnableColor();
+  test::CopyWithAttributes(q.m, m);
+  const std::vector<double> start = OcfState(m);
+  EditSession<test::TOMesh> s(m);
+  ASSERT_TRUE(s.PickVertex(q.pair7).ok) << s.Message();
+  std::mt19937 rng(11);
+  int deleting = 0, steps = 0;
+  for (int i = 0; i < 150; ++i) {
+    std::vector<int> ok;
+    for (auto& d : s.Directions())
+      if (d.accepted) ok.push_back(d.k);
+    if (ok.empty()) break;
+    const int vn0 = m.vn, fn0 = m.fn;
+    ASSERT_TRUE(s.Step(ok[rng() % ok.size()]).ok) << s.Message();
+    ++steps;
+    ASSERT_TRUE(m.vert.size() == size_t(m.vn) && m.face.size() == size_t(m.fn)) << "step " << i;
+    deleting += m.vn < vn0 || m.fn < fn0;
+  }
+  std::printf("ocf: %d steps, %d of them deleted elements\n", steps, deleting);
+  EXPECT_GT(steps, 100);
+  EXPECT_GT(deleting, 0);
+  Result inv = CheckInvariants(m);
+  ASSERT_TRUE(inv.ok) << inv.reason;
+  while (s.Undo()) ASSERT_TRUE(m.vert.size() == size_t(m.vn) && m.face.size() == size_t(m.fn));
   EXPECT_TRUE(OcfState(m) == start);
 }
 
