@@ -489,6 +489,17 @@ std::vector<double> OcfState(test::TOMesh& m) {
   }
   return s;
 }
+/// Copies `from` into `m` with the optional components MeshLab's CMeshO enables for the tool.
+void CopyAsCMeshO(TMesh& from, test::TOMesh& m) {
+  m.vert.EnableVFAdjacency();
+  m.vert.EnableMark();
+  m.face.EnableFFAdjacency();
+  m.face.EnableVFAdjacency();
+  m.face.EnableMark();
+  m.face.EnableWedgeTexCoord();
+  m.face.EnableColor();
+  test::CopyWithAttributes(from, m);
+}
 }  // namespace
 
 // MeshLab's CMeshO keeps adjacency and attributes as optional components (vector_ocf): the
@@ -497,14 +508,7 @@ TEST(EditSession, OptionalComponentsLikeCMeshO) {
   QuadMesh q;
   MakeQuadruple(q, 3, false);
   test::TOMesh m;
-  m.vert.EnableVFAdjacency();
-  m.vert.EnableMark();
-  m.face.EnableFFAdjacency();
-  m.face.EnableVFAdjacency();
-  m.face.EnableMark();
-  m.face.EnableWedgeTexCoord();
-  m.face.EnableColor();
-  test::CopyWithAttributes(q.m, m);
+  CopyAsCMeshO(q.m, m);
   const std::vector<double> start = OcfState(m);
   EditSession<test::TOMesh> s(m);
   EXPECT_TRUE(OcfState(m) == start);  // reserving room changed nothing
@@ -534,14 +538,7 @@ TEST(EditSession, OptionalComponentsDeletingStepsUndo) {
   QuadMesh q;
   MakeQuadruple(q, 5, false);
   test::TOMesh m;
-  m.vert.EnableVFAdjacency();
-  m.vert.EnableMark();
-  m.face.EnableFFAdjacency();
-  m.face.EnableVFAdjacency();
-  m.face.EnableMark();
-  m.face.EnableWedgeTexCoord();
-  m.face.EnableColor();
-  test::CopyWithAttributes(q.m, m);
+  CopyAsCMeshO(q.m, m);
   const std::vector<double> start = OcfState(m);
   EditSession<test::TOMesh> s(m);
   ASSERT_TRUE(s.PickVertex(q.pair7).ok) << s.Message();
