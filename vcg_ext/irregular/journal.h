@@ -5,6 +5,11 @@
 // partly applied sequence of operations leaves the mesh exactly as it was, FF and VF adjacency
 // included. Costs O(touched elements): nothing here walks the whole mesh.
 //
+// An edit may also move elements into the holes of deleted ones and truncate the vectors
+// (the edit session's compaction): SaveWholeFace / SaveWholeVertex keep a copy of the whole
+// element as well, restored in its chronological place, and RollbackTo grows the vectors back
+// (within their capacity) before restoring, so the vectors end exactly as at the checkpoint.
+//
 // Elements are recorded by index, not pointer, because adding elements may reallocate the
 // vertex and face vectors (vcg's Allocator then fixes the mesh's own pointers, not ours).
 //
