@@ -136,7 +136,12 @@ void IrregularEditTool::RefreshIrregular(MeshModel& m) {
 void IrregularEditTool::RefreshAround(MeshModel& m, const std::vector<int>& touched) {
   // What a step can change: the valence and position of the touched vertices (created ones
   // included), hence the normals of their faces and of those faces' vertices. O(touched).
+  // The session keeps the mesh compact (EditSession::Compact): a step that deletes elements
+  // moves the last ones into the holes and truncates, an undo grows the vectors back; the
+  // moved and the truncated vertices are among the touched ones.
   CMeshO& cm = m.cm;
+  for (size_t i = cm.vert.size(); i < equivalent_.size(); ++i)  // truncated by the step
+    irregularCount_ -= (equivalent_[i] >= 0 && equivalent_[i] != 6);
   equivalent_.resize(cm.vert.size(), -1);
   std::vector<CMeshO::FacePointer> faces;
   for (int v : touched) {
@@ -172,9 +177,11 @@ bool IrregularEditTool::CompactIfNeeded(MeshModel& m) {
   CMeshO& cm = m.cm;
   if (size_t(cm.vn) == cm.vert.size() && size_t(cm.fn) == cm.face.size()) return false;
   // MeshLab's renderer (vcg's buffer manager) reads face[0..fn) and vert[0..vn): a mesh with
-  // deleted elements crashes it, so the mesh is compacted before MeshLab sees it. The
-  // session's journals are indexed by element, so the session restarts on the compact mesh
-  // with the pair remapped, and the undo history so far is lost (reported).
+  // deleted elements crashes it. The session keeps the mesh compact after every step, cancel,
+  // undo and redo (EditSession::Compact, journaled, so the undo history survives); this is a
+  // guarded fallback only, should an operation ever leave deleted elements: the mesh is
+  // compacted, the session restarts on it with the pair remapped, and the undo history so
+  // far is lost (reported).
   const int lead = session_->Lead(), partner = session_->Partner();
   vcg::tri::Allocator<CMeshO>::PointerUpdater<CMeshO::VertexPointer> pu;
   vcg::tri::Allocator<CMeshO>::CompactVertexVector(cm, pu);
@@ -186,8 +193,8 @@ bool IrregularEditTool::CompactIfNeeded(MeshModel& m) {
   const int nl = pu.remap.empty() ? lead : remap(lead), np = pu.remap.empty() ? partner : remap(partner);
   session_.reset(new Session(cm));
   if (nl >= 0 && session_->PickVertex(nl) && np >= 0) session_->PickPartner(np);
-  pendingLog_.push_back(std::string(kTool) + ": the step deleted mesh elements; the mesh was compacted for MeshLab's "
-                        "renderer, which clears the undo history");
+  pendingLog_.push_back(std::string(kTool) + ": unexpected: the operation left deleted mesh elements; the mesh was "
+                        "compacted for MeshLab's renderer, which clears the undo history (please report this)");
   return true;
 }
 

@@ -66,8 +66,9 @@ class IrregularEditTool {
   /// After a step, a cancellation or an undo: normals, bbox and valences around the touched
   /// vertices (EditSession::Touched), and MeshLab's buffers (positions and connectivity).
   void MeshChanged(MeshModel& m, GLArea* gla);
-  /// Compacts the mesh when an operation left deleted elements (MeshLab's renderer needs a
-  /// compact mesh) and restarts the session on it with the pair remapped; true if it did.
+  /// Fallback only (the session keeps the mesh compact itself): compacts the mesh if an
+  /// operation left deleted elements (MeshLab's renderer needs a compact mesh) and restarts
+  /// the session on it with the pair remapped, losing the undo history; true if it did.
   bool CompactIfNeeded(MeshModel& m);
   /// The equivalent valence of every vertex (O(n): at Start).
   void RefreshIrregular(MeshModel& m);

@@ -52,6 +52,13 @@ std::set<int> IrregularSet(TMesh& m) {
   return std::set<int>(v.begin(), v.end());
 }
 
+/// MeshLab's renderer reads vert[0..vn) and face[0..fn): the session keeps no deleted element.
+::testing::AssertionResult Compact(const TMesh& m) {
+  if (m.vert.size() == size_t(m.vn) && m.face.size() == size_t(m.fn)) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "vert.size() " << m.vert.size() << " vn " << m.vn << " face.size() "
+                                       << m.face.size() << " fn " << m.fn;
+}
+
 /// Orthographic projection onto the xy plane (the screen of a camera looking down -z).
 vcg::Point2d Ortho(const P3& p) { return vcg::Point2d(p[0], p[1]); }
 
@@ -207,6 +214,8 @@ TEST(EditSession, StepMovesThePairWhereTheDryRunSaid) {
     EXPECT_EQ(ValenceOf(q.m, s.Partner()), 7);
     EXPECT_EQ(IrregularSet(q.m), (std::set<int>{s.Lead(), s.Partner(), q.other5, q.other7}));
     for (int v : s.Touched()) {
+      // (a step that deleted elements also lists the slots it truncated, now past the end)
+      if (size_t(v) >= q.m.vert.size()) continue;
       if (v == s.Lead() || v == s.Partner() || v == q.other5 || v == q.other7 || q.m.vert[size_t(v)].IsD()) continue;
       auto st = StarOf<TMesh>(&q.m.vert[size_t(v)]);
       EXPECT_EQ(st.Valence(), RegularValenceOf(st)) << "vertex " << v;
@@ -222,6 +231,8 @@ TEST(EditSession, StepMovesThePairWhereTheDryRunSaid) {
     const test::MeshSnapshot after = test::Snapshot(q.m);
     std::set<int> touched(s.Touched().begin(), s.Touched().end());
     for (size_t v = 0; v < before.verts.size(); ++v)
+      if (!touched.count(int(v))) ASSERT_LT(v, after.verts.size()) << "vertex " << v << " truncated, not touched";
+    for (size_t v = 0; v < std::min(before.verts.size(), after.verts.size()); ++v)
       if (!touched.count(int(v))) EXPECT_TRUE(before.verts[v] == after.verts[v]) << "vertex " << v << " changed";
     Result inv = CheckInvariants(q.m);
     ASSERT_TRUE(inv.ok) << inv.reason;
@@ -249,20 +260,26 @@ TEST(EditSession, UndoRestoresTheMeshBitIdentically) {
     std::mt19937 rng(7 + unsigned(n));
     std::vector<test::MeshSnapshot> states{start};
     std::vector<std::pair<int, int>> pairs{{l0, p0}};
+    int deleting = 0;
     for (int i = 0; i < n; ++i) {
       std::vector<int> ok;
       for (auto& d : s.Directions())
         if (d.accepted) ok.push_back(d.k);
       ASSERT_FALSE(ok.empty()) << "step " << i;
+      const int vn0 = q.m.vn, fn0 = q.m.fn;
       ASSERT_TRUE(s.Step(ok[rng() % ok.size()]).ok) << s.Message();
+      ASSERT_TRUE(Compact(q.m)) << "step " << i;
+      deleting += q.m.vn < vn0 || q.m.fn < fn0;
       if (n <= 3) states.push_back(test::Snapshot(q.m));
       pairs.push_back({s.Lead(), s.Partner()});
     }
+    if (n == 150) EXPECT_GT(deleting, 0) << "no step deleted elements: the compaction went untested";
     EXPECT_EQ(s.UndoDepth(), n);
     Result inv = CheckInvariants(q.m);
     ASSERT_TRUE(inv.ok) << inv.reason;
     for (int i = n; i-- > 0;) {
       ASSERT_TRUE(s.Undo()) << i;
+      ASSERT_TRUE(Compact(q.m)) << "undo " << i;
       if (n <= 3) EXPECT_TRUE(test::Snapshot(q.m) == states[size_t(i)]) << "after undoing step " << i + 1;
       EXPECT_EQ(s.Lead(), pairs[size_t(i)].first);
       EXPECT_EQ(s.Partner(), pairs[size_t(i)].second);
@@ -278,6 +295,7 @@ TEST(EditSession, UndoRestoresTheMeshBitIdentically) {
       EXPECT_EQ(s.RedoDepth(), n);
       for (int i = 1; i <= n; ++i) {
         ASSERT_TRUE(s.Redo()) << s.Message();
+        ASSERT_TRUE(Compact(q.m));
         EXPECT_TRUE(test::Snapshot(q.m) == states[size_t(i)]) << "after redoing step " << i;
         EXPECT_EQ(s.Lead(), pairs[size_t(i)].first);
       }
@@ -412,10 +430,12 @@ TEST(EditSession, CancelsAQuadrupleThroughTheSession) {
   EXPECT_FALSE(s.CancelTriple().ok);  // no v5 or v7 would make a triple: refused, unchanged
   EXPECT_TRUE(test::Snapshot(q.m) == before);
   ASSERT_TRUE(s.CancelQuadruple().ok) << s.Message();
+  EXPECT_TRUE(Compact(q.m));
   EXPECT_TRUE(test::IrregularVertices(q.m).empty());
   EXPECT_FALSE(s.HasPair());
   EXPECT_TRUE(CheckInvariants(q.m).ok);
   ASSERT_TRUE(s.Undo());
+  EXPECT_TRUE(Compact(q.m));
   EXPECT_TRUE(test::Snapshot(q.m) == before);
   EXPECT_EQ(s.Lead(), q.pair5);
 }
@@ -441,6 +461,7 @@ TEST(EditSession, CancelsATripleThroughTheSession) {
   ASSERT_TRUE(s.PickVertex(g.pair5).ok);
   ASSERT_TRUE(s.PickPartner(g.pair7).ok);
   ASSERT_TRUE(s.CancelTriple().ok) << s.Message();
+  EXPECT_TRUE(Compact(m));
   // 12 v5 again: the triple left one v5, the session's new lead
   std::vector<int> irr = test::IrregularVertices(m);
   EXPECT_EQ(irr.size(), 12u);
@@ -468,6 +489,17 @@ std::vector<double> OcfState(test::TOMesh& m) {
   }
   return s;
 }
+/// Copies `from` into `m` with the optional components MeshLab's CMeshO enables for the tool.
+void CopyAsCMeshO(TMesh& from, test::TOMesh& m) {
+  m.vert.EnableVFAdjacency();
+  m.vert.EnableMark();
+  m.face.EnableFFAdjacency();
+  m.face.EnableVFAdjacency();
+  m.face.EnableMark();
+  m.face.EnableWedgeTexCoord();
+  m.face.EnableColor();
+  test::CopyWithAttributes(from, m);
+}
 }  // namespace
 
 // MeshLab's CMeshO keeps adjacency and attributes as optional components (vector_ocf): the
@@ -476,14 +508,7 @@ TEST(EditSession, OptionalComponentsLikeCMeshO) {
   QuadMesh q;
   MakeQuadruple(q, 3, false);
   test::TOMesh m;
-  m.vert.EnableVFAdjacency();
-  m.vert.EnableMark();
-  m.face.EnableFFAdjacency();
-  m.face.EnableVFAdjacency();
-  m.face.EnableMark();
-  m.face.EnableWedgeTexCoord();
-  m.face.EnableColor();
-  test::CopyWithAttributes(q.m, m);
+  CopyAsCMeshO(q.m, m);
   const std::vector<double> start = OcfState(m);
   EditSession<test::TOMesh> s(m);
   EXPECT_TRUE(OcfState(m) == start);  // reserving room changed nothing
@@ -504,4 +529,94 @@ TEST(EditSession, OptionalComponentsLikeCMeshO) {
   while (s.Undo()) {
   }
   EXPECT_TRUE(OcfState(m) == start);
+}
+
+// The compaction on optional components (vector_ocf: VF / FF adjacency and wedge texture
+// coordinates live beside the vectors, and truncating drops them): random steps, deleting ones
+// among them, keep the mesh compact, and undoing all of them restores it bit for bit.
+TEST(EditSession, OptionalComponentsDeletingStepsUndo) {
+  QuadMesh q;
+  MakeQuadruple(q, 5, false);
+  test::TOMesh m;
+  CopyAsCMeshO(q.m, m);
+  const std::vector<double> start = OcfState(m);
+  EditSession<test::TOMesh> s(m);
+  ASSERT_TRUE(s.PickVertex(q.pair7).ok) << s.Message();
+  std::mt19937 rng(11);
+  int deleting = 0, steps = 0;
+  for (int i = 0; i < 150; ++i) {
+    std::vector<int> ok;
+    for (auto& d : s.Directions())
+      if (d.accepted) ok.push_back(d.k);
+    if (ok.empty()) break;
+    const int vn0 = m.vn, fn0 = m.fn;
+    ASSERT_TRUE(s.Step(ok[rng() % ok.size()]).ok) << s.Message();
+    ++steps;
+    ASSERT_TRUE(m.vert.size() == size_t(m.vn) && m.face.size() == size_t(m.fn)) << "step " << i;
+    deleting += m.vn < vn0 || m.fn < fn0;
+  }
+  std::printf("ocf: %d steps, %d of them deleted elements\n", steps, deleting);
+  EXPECT_GT(steps, 100);
+  EXPECT_GT(deleting, 0);
+  Result inv = CheckInvariants(m);
+  ASSERT_TRUE(inv.ok) << inv.reason;
+  while (s.Undo()) ASSERT_TRUE(m.vert.size() == size_t(m.vn) && m.face.size() == size_t(m.fn));
+  EXPECT_TRUE(OcfState(m) == start);
+}
+
+// A step that deletes elements (a collapse inside the move) leaves the mesh compact (MeshLab's
+// renderer needs it): the last vertices and faces move into the holes, journaled, so the pair
+// is where the dry run said, the invariants hold, and undo restores the mesh bit for bit
+// (the vectors grow back). Random steps from a quadruple until one deletes elements.
+TEST(EditSession, DeletingStepKeepsTheMeshCompactAndUndoable) {
+  QuadMesh q;
+  MakeQuadruple(q, 5, false);
+  ASSERT_TRUE(Compact(q.m));
+  EditSession<TMesh> s(q.m);
+  ASSERT_TRUE(s.PickVertex(q.pair7).ok);
+  std::mt19937 rng(11);
+  int deleting = 0;
+  for (int i = 0; i < 400 && deleting < 3; ++i) {
+    std::vector<EditDirection<P3>> ok;
+    for (auto& d : s.Directions())
+      if (d.accepted) ok.push_back(d);
+    ASSERT_FALSE(ok.empty()) << "step " << i;
+    const EditDirection<P3> d = ok[rng() % ok.size()];
+    const int vn0 = q.m.vn, fn0 = q.m.fn;
+    const size_t vs0 = q.m.vert.size(), fs0 = q.m.face.size();
+    const test::MeshSnapshot before = test::Snapshot(q.m);
+    const int l0 = s.Lead(), p0 = s.Partner();
+    ASSERT_TRUE(s.Step(d.k).ok) << s.Message();
+    ASSERT_TRUE(Compact(q.m)) << "step " << i;
+    Result inv = CheckInvariants(q.m);
+    ASSERT_TRUE(inv.ok) << "step " << i << ": " << inv.reason;
+    EXPECT_EQ(s.Lead(), d.lead) << "step " << i;
+    EXPECT_EQ(s.Partner(), d.partner) << "step " << i;
+    EXPECT_EQ(q.m.vert[size_t(s.Lead())].P(), d.to) << "step " << i;
+    EXPECT_NE(ValenceOf(q.m, s.Lead()), 6);
+    if (q.m.vn >= vn0 && q.m.fn >= fn0) continue;
+    ++deleting;
+    // the touched vertices cover the moved and the truncated slots
+    std::vector<int> t = s.Touched();
+    for (size_t v = q.m.vert.size(); v < vs0; ++v)
+      EXPECT_TRUE(std::binary_search(t.begin(), t.end(), int(v))) << "truncated vertex " << v << " not touched";
+    EXPECT_LE(q.m.face.size(), fs0);
+    // undo grows the vectors back, bit for bit; redo gives the same compact mesh
+    const test::MeshSnapshot after = test::Snapshot(q.m);
+    ASSERT_TRUE(s.Undo());
+    ASSERT_TRUE(Compact(q.m));
+    EXPECT_TRUE(test::Snapshot(q.m) == before) << "undo of deleting step " << i;
+    EXPECT_EQ(q.m.vert.size(), vs0);
+    EXPECT_EQ(s.Lead(), l0);
+    EXPECT_EQ(s.Partner(), p0);
+    inv = CheckInvariants(q.m);
+    ASSERT_TRUE(inv.ok) << inv.reason;
+    ASSERT_TRUE(s.Redo()) << s.Message();
+    ASSERT_TRUE(Compact(q.m));
+    EXPECT_TRUE(test::Snapshot(q.m) == after) << "redo of deleting step " << i;
+    // picking still finds the lead at its (possibly new) index
+    ASSERT_TRUE(s.PickAt(q.m.vert[size_t(s.Lead())].P()).ok) << s.Message();
+    ASSERT_TRUE(s.PickPartner(d.partner).ok) << s.Message();
+  }
+  EXPECT_GT(deleting, 0) << "no step deleted elements in 400 random steps";
 }

@@ -16,6 +16,14 @@
 //    connectivity, attributes and the picked pair bit for bit. Beyond opt.undoDepth entries the
 //    oldest journal is dropped (its edit becomes permanent), so memory stays bounded. Redo
 //    replays an undone action on the bit-identical state it ran on.
+//  * A compact mesh: MeshLab's renderer reads vert[0..vn) and face[0..fn), so after every
+//    Step, Cancel*, Undo and Redo the mesh has no deleted element (vert.size() == vn,
+//    face.size() == fn), provided it had none at the start. A step that deletes elements (a
+//    collapse) moves the last live vertices / faces into the holes and truncates the vectors,
+//    inside the step's journal (Compact: O(deleted * valence), the holes found among the
+//    elements the step saved, never by a scan); Undo grows the vectors back (journal.h), bit
+//    for bit, so the undo history survives. Moved elements change index: the pair follows,
+//    Touched() lists the filled and the truncated slots, the picking grid re-bins them.
 //  * Spare capacity in m.vert / m.face (Reserve), so that a split in a step never makes vcg's
 //    Allocator reallocate and re-point every face (O(F)) in the middle of a key press.
 //
@@ -247,9 +255,12 @@ class EditSession {
     if (!o) return Say(Result::Fail(Str("direction ", k + 1, " refused: ", o.result.reason)));
     const int l0 = lead_, p0 = partner_;
     e.action = Action::Step, e.k = k;
-    lead_ = o.lead;
-    partner_ = o.partner;
-    Push(std::move(e), before, PairRegion(lead_, partner_));
+    Compaction c = Compact(*e.ed, e.start);
+    lead_ = c.Where(o.lead);
+    partner_ = c.Where(o.partner);
+    std::vector<int> after = PairRegion(lead_, partner_);
+    after.insert(after.end(), c.touched.begin(), c.touched.end());
+    Push(std::move(e), before, after);
     return Say(Result::Ok(), Str("moved the pair in direction ", k + 1, ": vertex ", l0, " -> ", lead_, ", vertex ", p0,
                                  " -> ", partner_));
   }
@@ -328,7 +339,9 @@ class EditSession {
   /// The last refusal or success message, for the viewport and the log.
   const std::string& Message() const { return message_; }
   /// The vertices the last step, cancellation or undo may have changed (positions, valences;
-  /// created vertices included), for the GUI's partial re-upload and the picking grid.
+  /// created vertices included; the slots the compaction filled, the truncated ones - past
+  /// the end of m.vert after a step, back after its undo - and the corners of moved faces),
+  /// for the GUI's partial re-upload and the picking grid.
   const std::vector<int>& Touched() const { return touched_; }
   /// The pick radius in model units (opt.pickRadius, or 1.5 mean edge lengths).
   double PickRadius() {
@@ -483,6 +496,130 @@ class EditSession {
     grid_.Refresh(touched_);
   }
 
+  /// What Compact did: the vertices moved into holes (old index -> new index) and the vertices
+  /// whose slot or faces changed (for Touched() and the picking grid).
+  struct Compaction {
+    std::vector<std::pair<int, int>> moved;
+    std::vector<int> touched;
+    int Where(int v) const {
+      for (const auto& p : moved)
+        if (p.first == v) return p.second;
+      return v;
+    }
+  };
+
+  /// Leaves the mesh without deleted elements (m.vert.size() == vn, m.face.size() == fn),
+  /// journaled in `ed` so that rolling back to `cp` restores the vectors bit for bit (journal.h
+  /// grows them back). Precondition: the mesh had no deleted element at `cp`. The holes are
+  /// found among the elements the edit saved or created since `cp` (a deleted element was
+  /// saved before its deletion), never by a pass over the mesh; each hole below the end gets
+  /// the last live element: a vertex's faces are re-pointed through its VF list (O(valence)),
+  /// a face's three FF neighbours and the VF lists of its three vertices are fixed
+  /// (O(valence)); deleted elements at the end are truncated (which never reallocates).
+  /// Cost O(touched * valence).
+  Compaction Compact(Editor& ed, const typename Editor::Checkpoint& cp) {
+    typedef typename MeshType::FaceType FaceType;
+    typedef typename MeshType::VertexType VertexType;
+    auto& j = ed.journal();
+    Compaction out;
+    // --- vertices
+    std::vector<size_t> holes = j.VerticesSavedSince(cp);
+    for (size_t i = cp.verts; i < m_.vert.size(); ++i) holes.push_back(i);
+    Holes(holes, m_.vert);
+    auto dropDeletedTail = [&](auto& vec, auto save) {
+      while (!vec.empty() && vec.back().IsD()) {
+        save(&vec.back());
+        vec.resize(vec.size() - 1);
+      }
+    };
+    auto saveV = [&](VertexType* v) { j.SaveWholeVertex(v); };
+    auto saveF = [&](FaceType* f) { j.SaveWholeFace(f); };
+    for (size_t i : holes) {
+      dropDeletedTail(m_.vert, saveV);
+      if (i >= m_.vert.size()) break;
+      const size_t last = m_.vert.size() - 1;
+      VertexType& to = m_.vert[i];
+      VertexType& from = m_.vert[last];
+      j.SaveWholeVertex(&to);
+      j.SaveWholeVertex(&from);
+      for (vcg::face::VFIterator<FaceType> it(&from); !it.End(); ++it) {
+        j.SaveFace(it.F());
+        it.F()->V(it.I()) = &to;
+      }
+      to.ImportData(from);
+      to.P() = from.P();
+      to.Flags() = from.Flags();
+      to.VFp() = from.VFp();
+      to.VFi() = from.VFi();
+      m_.vert.resize(last);
+      out.moved.push_back({int(last), int(i)});
+      out.touched.push_back(int(i));
+      out.touched.push_back(int(last));  // gone now, back after an undo: the grid re-bins both
+    }
+    dropDeletedTail(m_.vert, saveV);
+    // --- faces
+    holes = j.FacesSavedSince(cp);
+    for (size_t i = cp.faces; i < m_.face.size(); ++i) holes.push_back(i);
+    Holes(holes, m_.face);
+    for (size_t i : holes) {
+      dropDeletedTail(m_.face, saveF);
+      if (i >= m_.face.size()) break;
+      const size_t last = m_.face.size() - 1;
+      FaceType* to = &m_.face[i];
+      FaceType* from = &m_.face[last];
+      j.SaveWholeFace(to);
+      j.SaveWholeFace(from);
+      for (int z = 0; z < 3; ++z) {
+        FaceType* nb = from->FFp(z);
+        if (nb != nullptr && nb != from) {
+          j.SaveFace(nb);
+          nb->FFp(from->FFi(z)) = to;
+        }
+        // the VF list of vertex z: its head, or the entry of the face before `from`
+        VertexType* v = from->V(z);
+        if (v->VFp() == from) {
+          j.SaveVertex(v);
+          v->VFp() = to;
+        } else {
+          FaceType* g = v->VFp();
+          int gi = v->VFi();
+          while (g != nullptr && g != from) {
+            if (g->VFp(gi) == from) {
+              j.SaveFace(g);
+              g->VFp(gi) = to;
+              break;
+            }
+            FaceType* next = g->VFp(gi);
+            gi = g->VFi(gi);
+            g = next;
+          }
+        }
+        out.touched.push_back(int(vcg::tri::Index(m_, v)));
+      }
+      to->ImportData(*from);
+      to->Flags() = from->Flags();
+      for (int z = 0; z < 3; ++z) {
+        to->V(z) = from->V(z);
+        to->FFp(z) = from->FFp(z) == from ? to : from->FFp(z);
+        to->FFi(z) = from->FFi(z);
+        to->VFp(z) = from->VFp(z);
+        to->VFi(z) = from->VFi(z);
+      }
+      m_.face.resize(last);
+    }
+    dropDeletedTail(m_.face, saveF);
+    assert(m_.vert.size() == size_t(m_.vn) && m_.face.size() == size_t(m_.fn));
+    return out;
+  }
+  /// Keeps the deleted elements of `cand` (indices into vec), sorted, without repetitions.
+  template <class Vec>
+  static void Holes(std::vector<size_t>& cand, const Vec& vec) {
+    cand.erase(std::remove_if(cand.begin(), cand.end(), [&](size_t i) { return i >= vec.size() || !vec[i].IsD(); }),
+               cand.end());
+    std::sort(cand.begin(), cand.end());
+    cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
+  }
+
   /// Keeps spare capacity in m.vert and m.face, so that a split during a step never
   /// reallocates them: vcg's Allocator would then walk every face to fix its pointers, O(F) in
   /// the middle of a step. When fewer than 1024 vertices (2048 faces) are spare, the vectors
@@ -512,9 +649,11 @@ class EditSession {
     CompositeOutcome o = Ops(ed, &original_, CompositeOpt()).MovePair(lead_, partner_, k, 1);
     d.accepted = o.result.ok;
     if (o) {
-      d.to = m_.vert[size_t(o.lead)].P();
-      d.lead = o.lead;
-      d.partner = o.partner;
+      // compacted like Step, so that lead / partner are the indices Step will give
+      Compaction c = Compact(ed, cp);
+      d.lead = c.Where(o.lead);
+      d.partner = c.Where(o.partner);
+      d.to = m_.vert[size_t(d.lead)].P();
       ed.RollbackTo(cp);
     } else {
       d.reason = o.result.reason;
@@ -539,16 +678,21 @@ class EditSession {
     Ops co(*e.ed, &original_, CompositeOpt());
     CompositeOutcome o = quadruple ? co.CancelQuadruple(group) : co.CancelTriple(group);
     if (!o) return o.result;
-    std::vector<int> after;
-    if (!quadruple && Live(o.survivor)) after = KRing(m_, {o.survivor}, 3);
+    Compaction c = Compact(*e.ed, e.start);
+    const int survivor = c.Where(o.survivor);
+    std::vector<int> after(c.touched);
+    if (!quadruple && Live(survivor)) {
+      std::vector<int> r = KRing(m_, {survivor}, 3);
+      after.insert(after.end(), r.begin(), r.end());
+    }
     Push(std::move(e), before, after);
     std::string what = quadruple ? "quadruple" : "triple";
     std::string ids = Str(group[0], ", ", group[1], ", ", group[2]) + (quadruple ? Str(", ", group[3]) : std::string());
-    if (quadruple || !Live(o.survivor)) {
+    if (quadruple || !Live(survivor)) {
       lead_ = partner_ = -1;
       return Say(Result::Ok(), Str("cancelled the ", what, " (", ids, ")"));
     }
-    lead_ = o.survivor;
+    lead_ = survivor;
     partner_ = NearestPartner(lead_);
     return Say(Result::Ok(), Str("cancelled the triple (", ids, "): vertex ", lead_, " (valence ", Valence(lead_),
                                  ") is left", partner_ >= 0 ? Str(", paired with vertex ", partner_) : std::string()));

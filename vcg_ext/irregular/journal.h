@@ -5,6 +5,11 @@
 // partly applied sequence of operations leaves the mesh exactly as it was, FF and VF adjacency
 // included. Costs O(touched elements): nothing here walks the whole mesh.
 //
+// An edit may also move elements into the holes of deleted ones and truncate the vectors
+// (the edit session's compaction): SaveWholeFace / SaveWholeVertex keep a copy of the whole
+// element as well, restored in its chronological place, and RollbackTo grows the vectors back
+// (within their capacity) before restoring, so the vectors end exactly as at the checkpoint.
+//
 // Elements are recorded by index, not pointer, because adding elements may reallocate the
 // vertex and face vectors (vcg's Allocator then fixes the mesh's own pointers, not ours).
 //
@@ -14,6 +19,8 @@
 // checks: compile-time for static components, run-time for optional ones).
 #pragma once
 
+#include <algorithm>
+#include <cassert>
 #include <cstddef>
 #include <vector>
 
@@ -33,6 +40,7 @@ class EditJournal {
   struct Checkpoint {
     size_t faceLog = 0, vertLog = 0, faces = 0, verts = 0;
     size_t faceAttrLog = 0, vertAttrLog = 0;
+    size_t faceWhole = 0, vertWhole = 0;
     int fn = 0, vn = 0;
   };
 
@@ -44,6 +52,8 @@ class EditJournal {
     c.vertLog = vertLog_.size();
     c.faceAttrLog = faceAttrLog_.size();
     c.vertAttrLog = vertAttrLog_.size();
+    c.faceWhole = faceWhole_.size();
+    c.vertWhole = vertWhole_.size();
     c.faces = m_.face.size();
     c.verts = m_.vert.size();
     c.fn = m_.fn;
@@ -82,16 +92,49 @@ class EditJournal {
     SaveVertexAttributes(r.idx, *v);
   }
 
+  /// Saves face f like SaveFace, plus a copy of the whole element (every static component,
+  /// whatever the journal knows of), for an edit that overwrites or truncates the slot
+  /// (compaction, edit_session.h). Rollback restores the copy in its chronological place.
+  void SaveWholeFace(FaceType* f) {
+    SaveFace(f);
+    faceWhole_.push_back(WholeFace{faceLog_.size(), faceLog_.back().idx, *f});
+  }
+  /// The same for vertex v.
+  void SaveWholeVertex(VertexType* v) {
+    SaveVertex(v);
+    vertWhole_.push_back(WholeVertex{vertLog_.size(), vertLog_.back().idx, *v});
+  }
+
+  /// The indices of the faces / vertices saved since checkpoint c (with repetitions), e.g. to
+  /// find the elements an edit deleted without a pass over the mesh. O(logged).
+  std::vector<size_t> FacesSavedSince(const Checkpoint& c) const {
+    std::vector<size_t> out;
+    for (size_t k = c.faceLog; k < faceLog_.size(); ++k) out.push_back(faceLog_[k].idx);
+    return out;
+  }
+  std::vector<size_t> VerticesSavedSince(const Checkpoint& c) const {
+    std::vector<size_t> out;
+    for (size_t k = c.vertLog; k < vertLog_.size(); ++k) out.push_back(vertLog_[k].idx);
+    return out;
+  }
+
   /// Restores the mesh to checkpoint c and forgets everything logged after it.
+  /// The vectors may be shorter than at c (an edit truncated them after moving elements into
+  /// holes): they grow back first, within their capacity (asserted: growing never reallocates,
+  /// so every pointer stays valid), then the records are restored newest first.
   void RollbackTo(const Checkpoint& c) {
-    for (size_t k = faceLog_.size(); k-- > c.faceLog;) Restore(faceLog_[k]);
-    for (size_t k = vertLog_.size(); k-- > c.vertLog;) Restore(vertLog_[k]);
+    GrowBack(m_.face, c.faces, c.faceLog, faceLog_);
+    GrowBack(m_.vert, c.verts, c.vertLog, vertLog_);
+    RestoreInterleaved(faceLog_, c.faceLog, faceWhole_, c.faceWhole);
+    RestoreInterleaved(vertLog_, c.vertLog, vertWhole_, c.vertWhole);
     for (size_t k = faceAttrLog_.size(); k-- > c.faceAttrLog;) Restore(faceAttrLog_[k]);
     for (size_t k = vertAttrLog_.size(); k-- > c.vertAttrLog;) Restore(vertAttrLog_[k]);
     faceLog_.resize(c.faceLog);
     vertLog_.resize(c.vertLog);
     faceAttrLog_.resize(c.faceAttrLog);
     vertAttrLog_.resize(c.vertAttrLog);
+    faceWhole_.erase(faceWhole_.begin() + long(c.faceWhole), faceWhole_.end());
+    vertWhole_.erase(vertWhole_.begin() + long(c.vertWhole), vertWhole_.end());
     // Truncating never reallocates, so every pointer into the kept part stays valid.
     if (m_.face.size() > c.faces) m_.face.resize(c.faces);
     if (m_.vert.size() > c.verts) m_.vert.resize(c.verts);
@@ -105,6 +148,8 @@ class EditJournal {
     vertLog_.clear();
     faceAttrLog_.clear();
     vertAttrLog_.clear();
+    faceWhole_.clear();
+    vertWhole_.clear();
   }
 
   size_t LoggedFaces() const { return faceLog_.size(); }
@@ -138,6 +183,42 @@ class EditJournal {
     typename VertexType::QualityType q;
     typename VertexType::TexCoordType t;
   };
+  /// A whole element, saved when the regular log held `stamp` records (it is newer than
+  /// those and older than the following ones).
+  struct WholeFace {
+    size_t stamp, idx;
+    FaceType f;
+  };
+  struct WholeVertex {
+    size_t stamp, idx;
+    VertexType v;
+  };
+
+  /// Grows `vec` back to the size the records since `from` and the checkpoint size `size` need
+  /// (never beyond its capacity: no reallocation, pointers stay valid).
+  template <class Vec, class Log>
+  static void GrowBack(Vec& vec, size_t size, size_t from, const Log& log) {
+    size_t need = size;
+    for (size_t k = from; k < log.size(); ++k) need = std::max(need, log[k].idx + 1);
+    if (need <= vec.size()) return;
+    assert(need <= vec.capacity());
+    vec.resize(need);
+  }
+  /// Restores `log` from its end down to `from`, and the whole copies since `wholeFrom` each
+  /// in its chronological place, newest first, so every element ends as it was at the
+  /// checkpoint.
+  template <class Log, class Whole>
+  void RestoreInterleaved(const Log& log, size_t from, const Whole& whole, size_t wholeFrom) {
+    size_t w = whole.size();
+    for (size_t k = log.size(); k-- > from;) {
+      for (; w > wholeFrom && whole[w - 1].stamp > k; --w) RestoreWhole(whole[w - 1]);
+      Restore(log[k]);
+    }
+    for (; w > wholeFrom; --w) RestoreWhole(whole[w - 1]);
+  }
+  void RestoreWhole(const WholeFace& r) { m_.face[r.idx] = r.f; }
+  void RestoreWhole(const WholeVertex& r) { m_.vert[r.idx] = r.v; }
+
   bool WedgeTex() const { return vcg::tri::HasPerWedgeTexCoord(m_); }
   bool FaceColor() const { return vcg::tri::HasPerFaceColor(m_); }
   bool FaceQuality() const { return vcg::tri::HasPerFaceQuality(m_); }
@@ -207,6 +288,8 @@ class EditJournal {
   std::vector<VertexRecord> vertLog_;
   std::vector<FaceAttrRecord> faceAttrLog_;
   std::vector<VertexAttrRecord> vertAttrLog_;
+  std::vector<WholeFace> faceWhole_;
+  std::vector<WholeVertex> vertWhole_;
 };
 
 }  // namespace irregular
