@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cstddef>
+#include <cstring>
 #include <vector>
 
 #include <vcg/complex/complex.h>
@@ -216,8 +217,16 @@ class EditJournal {
     }
     for (; w > wholeFrom; --w) RestoreWhole(whole[w - 1]);
   }
-  void RestoreWhole(const WholeFace& r) { m_.face[r.idx] = r.f; }
-  void RestoreWhole(const WholeVertex& r) { m_.vert[r.idx] = r.v; }
+  // Byte copies, not operator=: vcg's elements with optional components (CMeshO's) assert in
+  // operator= ("never copy an element that has OCF stuff"; a Debug build aborts). The bytes
+  // are what the copy holds; the optional data lives in the vector_ocf and comes back through
+  // the attribute and adjacency records restored next to it.
+  void RestoreWhole(const WholeFace& r) { CopyBytes(m_.face[r.idx], r.f); }
+  void RestoreWhole(const WholeVertex& r) { CopyBytes(m_.vert[r.idx], r.v); }
+  template <class T>
+  static void CopyBytes(T& to, const T& from) {
+    std::memcpy(static_cast<void*>(&to), static_cast<const void*>(&from), sizeof(T));
+  }
 
   bool WedgeTex() const { return vcg::tri::HasPerWedgeTexCoord(m_); }
   bool FaceColor() const { return vcg::tri::HasPerFaceColor(m_); }
