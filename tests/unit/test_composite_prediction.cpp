@@ -189,45 +189,23 @@ TEST(CompositePrediction, SmallRegionGrowsAndStaysHonest) {
   RandomRequests(m, "knot1", 40, 17u, 0);
 }
 
-namespace {
-/// test::Snapshot for the optional-component mesh: positions, flags, face vertices, FF and VF.
-std::vector<double> OcfSnapshot(test::TOMesh& m) {
-  std::vector<double> s{double(m.vn), double(m.fn)};
-  auto fi = [&](const test::TOMesh::FaceType* f) { return f ? double(vcg::tri::Index(m, f)) : -1.0; };
-  for (auto& v : m.vert) s.insert(s.end(), {v.P()[0], v.P()[1], v.P()[2], double(v.Flags()), fi(v.cVFp()), double(v.cVFi())});
-  for (auto& f : m.face) {
-    s.push_back(double(f.Flags()));
-    for (int z = 0; z < 3; ++z)
-      s.insert(s.end(), {double(vcg::tri::Index(m, f.cV(z))), fi(f.cFFp(z)), double(f.cFFi(z)), fi(f.cVFp(z)),
-                         double(f.cVFi(z)), f.cWT(z).U(), f.cWT(z).V()});
-  }
-  return s;
-}
-}  // namespace
 
 // MeshLab's CMeshO keeps adjacency and attributes as optional components: the scratch must
 // enable them like the user's mesh (else no FF/VF there).
 TEST(CompositePrediction, OptionalComponentsLikeCMeshO) {
   test::TOMesh m;
-  m.vert.EnableVFAdjacency();
-  m.vert.EnableMark();
-  m.face.EnableFFAdjacency();
-  m.face.EnableVFAdjacency();
-  m.face.EnableMark();
-  m.face.EnableWedgeTexCoord();
-  m.face.EnableColor();
   TMesh base;
   test::RegularTorus(base, 24, 12);
-  test::CopyWithAttributes(base, m);
+  test::CopyAsCMeshO(base, m);
   SurfaceProjector original(m);
   int agreed = 0, applied = 0;
   std::mt19937 rng(5u);
   for (int r = 0; r < 10; ++r) {
     const int v = int(rng() % m.vert.size()), k = int(rng() % 6), spacing = 1 + int(rng() % 3);
-    const std::vector<double> before = OcfSnapshot(m);
+    const std::vector<double> before = test::OcfSnapshot(m);
     CompositePredictor<test::TOMesh> pr(m, &original);
     CompositePrediction p = pr.PredictGenerateQuadruple(v, k, spacing);
-    EXPECT_TRUE(OcfSnapshot(m) == before);
+    EXPECT_TRUE(test::OcfSnapshot(m) == before);
     MeshEditor<test::TOMesh> ed(m);
     CompositeOperations<test::TOMesh> co(ed, &original);
     const auto cp = ed.Mark();

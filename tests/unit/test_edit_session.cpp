@@ -474,44 +474,16 @@ TEST(EditSession, CancelsATripleThroughTheSession) {
   EXPECT_EQ(s.Partner(), g.pair7);
 }
 
-namespace {
-/// Positions, flags, face vertices, FF, VF and wedge texture coordinates of the optional-component
-/// mesh, by index.
-std::vector<double> OcfState(test::TOMesh& m) {
-  std::vector<double> s{double(m.vn), double(m.fn), double(m.vert.size()), double(m.face.size())};
-  auto fi = [&](const test::TOMesh::FaceType* f) { return f ? double(vcg::tri::Index(m, f)) : -1.0; };
-  for (auto& v : m.vert) s.insert(s.end(), {v.P()[0], v.P()[1], v.P()[2], double(v.Flags()), fi(v.cVFp()), double(v.cVFi())});
-  for (auto& f : m.face) {
-    s.push_back(double(f.Flags()));
-    for (int z = 0; z < 3; ++z)
-      s.insert(s.end(), {double(vcg::tri::Index(m, f.cV(z))), fi(f.cFFp(z)), double(f.cFFi(z)), fi(f.cVFp(z)),
-                         double(f.cVFi(z)), f.cWT(z).U(), f.cWT(z).V()});
-  }
-  return s;
-}
-/// Copies `from` into `m` with the optional components MeshLab's CMeshO enables for the tool.
-void CopyAsCMeshO(TMesh& from, test::TOMesh& m) {
-  m.vert.EnableVFAdjacency();
-  m.vert.EnableMark();
-  m.face.EnableFFAdjacency();
-  m.face.EnableVFAdjacency();
-  m.face.EnableMark();
-  m.face.EnableWedgeTexCoord();
-  m.face.EnableColor();
-  test::CopyWithAttributes(from, m);
-}
-}  // namespace
-
 // MeshLab's CMeshO keeps adjacency and attributes as optional components (vector_ocf): the
 // session's spare capacity (Reserve) and its undo must work there too.
 TEST(EditSession, OptionalComponentsLikeCMeshO) {
   QuadMesh q;
   MakeQuadruple(q, 3, false);
   test::TOMesh m;
-  CopyAsCMeshO(q.m, m);
-  const std::vector<double> start = OcfState(m);
+  test::CopyAsCMeshO(q.m, m);
+  const std::vector<double> start = test::OcfSnapshot(m);
   EditSession<test::TOMesh> s(m);
-  EXPECT_TRUE(OcfState(m) == start);  // reserving room changed nothing
+  EXPECT_TRUE(test::OcfSnapshot(m) == start);  // reserving room changed nothing
   ASSERT_TRUE(s.PickAt(m.vert[size_t(q.pair5)].P()).ok) << s.Message();
   EXPECT_EQ(s.Lead(), q.pair5);
   EXPECT_EQ(s.Partner(), q.pair7);
@@ -528,7 +500,7 @@ TEST(EditSession, OptionalComponentsLikeCMeshO) {
   EXPECT_TRUE(CheckInvariants(m).ok);
   while (s.Undo()) {
   }
-  EXPECT_TRUE(OcfState(m) == start);
+  EXPECT_TRUE(test::OcfSnapshot(m) == start);
 }
 
 // The compaction on optional components (vector_ocf: VF / FF adjacency and wedge texture
@@ -538,8 +510,8 @@ TEST(EditSession, OptionalComponentsDeletingStepsUndo) {
   QuadMesh q;
   MakeQuadruple(q, 5, false);
   test::TOMesh m;
-  CopyAsCMeshO(q.m, m);
-  const std::vector<double> start = OcfState(m);
+  test::CopyAsCMeshO(q.m, m);
+  const std::vector<double> start = test::OcfSnapshot(m);
   EditSession<test::TOMesh> s(m);
   ASSERT_TRUE(s.PickVertex(q.pair7).ok) << s.Message();
   std::mt19937 rng(11);
@@ -561,7 +533,7 @@ TEST(EditSession, OptionalComponentsDeletingStepsUndo) {
   Result inv = CheckInvariants(m);
   ASSERT_TRUE(inv.ok) << inv.reason;
   while (s.Undo()) ASSERT_TRUE(m.vert.size() == size_t(m.vn) && m.face.size() == size_t(m.fn));
-  EXPECT_TRUE(OcfState(m) == start);
+  EXPECT_TRUE(test::OcfSnapshot(m) == start);
 }
 
 // A step that deletes elements (a collapse inside the move) leaves the mesh compact (MeshLab's

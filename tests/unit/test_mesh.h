@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include <vcg/complex/complex.h>
 #include <vcg/complex/algorithms/create/platonic.h>
@@ -133,6 +134,34 @@ inline void CopyWithAttributes(TMesh& src, MeshT& m) {
   vcg::tri::UpdateTopology<MeshT>::VertexFace(m);
   vcg::tri::UpdateBounding<MeshT>::Box(m);
   vcg::tri::UpdateNormal<MeshT>::PerFaceNormalized(m);
+}
+
+/// Copies `from` into `m` with the optional components MeshLab's CMeshO enables (VF, FF, marks,
+/// wedge texture coordinates, face colour).
+inline void CopyAsCMeshO(TMesh& from, TOMesh& m) {
+  m.vert.EnableVFAdjacency();
+  m.vert.EnableMark();
+  m.face.EnableFFAdjacency();
+  m.face.EnableVFAdjacency();
+  m.face.EnableMark();
+  m.face.EnableWedgeTexCoord();
+  m.face.EnableColor();
+  CopyWithAttributes(from, m);
+}
+
+/// Everything a bit-identical check of an optional-component mesh compares, by index: counts and
+/// vector sizes, positions, flags, face vertices, FF, VF and wedge texture coordinates.
+inline std::vector<double> OcfSnapshot(TOMesh& m) {
+  std::vector<double> s{double(m.vn), double(m.fn), double(m.vert.size()), double(m.face.size())};
+  auto fi = [&](const TOMesh::FaceType* f) { return f ? double(vcg::tri::Index(m, f)) : -1.0; };
+  for (auto& v : m.vert) s.insert(s.end(), {v.P()[0], v.P()[1], v.P()[2], double(v.Flags()), fi(v.cVFp()), double(v.cVFi())});
+  for (auto& f : m.face) {
+    s.push_back(double(f.Flags()));
+    for (int z = 0; z < 3; ++z)
+      s.insert(s.end(), {double(vcg::tri::Index(m, f.cV(z))), fi(f.cFFp(z)), double(f.cFFi(z)), fi(f.cVFp(z)),
+                         double(f.cVFi(z)), f.cWT(z).U(), f.cWT(z).V()});
+  }
+  return s;
 }
 
 inline std::string DataFile(const std::string& name) { return std::string(FI_DATA_DIR) + "/" + name; }
