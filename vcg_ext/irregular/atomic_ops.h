@@ -967,6 +967,13 @@ class AtomicOperations {
       int o[2];
       int d1, d2;
     };
+    // Only a step whose touched vertices cover the whole group can change all of it: the
+    // others are dropped as they are enumerated (most of them; no allocation for those).
+    auto covers = [&](int a, int b, int c, int d) {
+      for (int g : group)
+        if (g != a && g != b && g != c && g != d) return false;
+      return true;
+    };
     std::vector<Scored> cands;
     for (int v : area) {
       VertexStar<MeshType> s = ed_.Star(v);
@@ -979,16 +986,20 @@ class AtomicOperations {
           sc.o[0] = ed_.Index(s.neighbors[size_t((k + 1) % d)]);
           sc.o[1] = ed_.Index(s.neighbors[size_t((k + d - 1) % d)]);
           sc.d1 = sc.d2 = 0;
-          sc.c = StepFlip(v, w);
-          cands.push_back(sc);
-          sc.c = StepCollapse(w, v);
-          cands.push_back(sc);
+          if (covers(v, w, sc.o[0], sc.o[1])) {
+            sc.c = StepFlip(v, w);
+            cands.push_back(sc);
+            sc.c = StepCollapse(w, v);
+            cands.push_back(sc);
+          }
         }
         if (!withSplits) continue;
         for (int l = 0; l < d; ++l) {
           if (l == k) continue;
+          const int u = ed_.Index(s.neighbors[size_t(l)]);
+          if (!covers(v, w, u, u)) continue;
           Scored sc;
-          sc.c = StepSplit(v, w, ed_.Index(s.neighbors[size_t(l)]));
+          sc.c = StepSplit(v, w, u);
           sc.d1 = ((l - k - 1) % d + d) % d;  // neighbours strictly between a = n_k and b = n_l
           sc.d2 = d - 2 - sc.d1;
           sc.o[0] = sc.o[1] = -1;
@@ -1002,9 +1013,6 @@ class AtomicOperations {
       const int* o = sc.o;
       std::vector<int> touched =
           c.kind == GraphStep::kSplit ? std::vector<int>{c.x, c.y, c.z} : std::vector<int>{c.x, c.y, o[0], o[1]};
-      bool covers = true;
-      for (int g : group) covers = covers && std::find(touched.begin(), touched.end(), g) != touched.end();
-      if (!covers) continue;
       std::map<int, int> before, pred;
       for (int t : touched) before[t] = val(t);
       const int dx = val(c.x), dy = val(c.y);

@@ -159,9 +159,25 @@ class EditGuard {
         if (!probe(CoordType((f->cP(z) + f->cP((z + 1) % 3)) / 2))) return mx;
       }
     }
-    // (b) the input samples near the changed faces against the edited surface there. The
-    // faces are hashed on a grid so each sample is compared with the faces around it only:
-    // O(region) for any edit size. Faces of one more ring are included so a sample by the
+    // (b) the input samples near the changed faces against the edited surface there. Most
+    // edits have none near them (samples sit on sharp edges): look them up first, and build
+    // the face hash below only when there is one. A sample off the edited surface (a cut
+    // crease) lies outside its face's box: the boxes are widened; deviations grow edit by
+    // edit, so catching them below twice the budget suffices.
+    std::vector<int> near;
+    {
+      std::unordered_set<int> probed;
+      for (const FaceType* f : changed) {
+        vcg::Box3<float> b;
+        for (int z = 0; z < 3; ++z) b.Add(vcg::Point3f::Construct(f->cP(z)));
+        b.Offset(float(2 * budget_));
+        for (int i : originalSamples_.InBox(b))
+          if (probed.insert(i).second) near.push_back(i);
+      }
+    }
+    if (near.empty()) return mx;
+    // The faces are hashed on a grid so each sample is compared with the faces around it
+    // only: O(region) for any edit size. Faces of one more ring are included so a sample by the
     // border finds its true closest face; only samples closest to a changed face count, and
     // only on the same side (a thin part's other sheet is not this edit's business).
     all = changed;
@@ -189,7 +205,6 @@ class EditGuard {
         for (int64_t y = cellOf(b.min[1]); y <= cellOf(b.max[1]); ++y)
           for (int64_t z = cellOf(b.min[2]); z <= cellOf(b.max[2]); ++z) faceCells[key(x, y, z)].push_back(int(k));
     }
-    std::unordered_set<int> probed;
     // A face spans several cells: measured once per sample (lastSample); and not at all when
     // its box is already farther than the closest face so far (the distance to a triangle is
     // at least the distance to its box; the margin covers rounding), which cannot change the
@@ -203,41 +218,33 @@ class EditGuard {
       }
       return std::sqrt(d2);
     };
-    for (size_t k = 0; k < changed.size(); ++k) {
-      vcg::Box3<float> b;
-      for (int z = 0; z < 3; ++z) b.Add(tri[k].P(z));
-      // a sample off the edited surface (a cut crease) lies outside the face's box: widen it;
-      // deviations grow edit by edit, so catching them below twice the budget suffices
-      b.Offset(float(2 * budget_));
-      for (int i : originalSamples_.InBox(b)) {
-        if (!probed.insert(i).second) continue;
-        const vcg::Point3f& p = originalSamples_.Point(i);
-        float best = std::numeric_limits<float>::max();
-        int bestFace = -1;
-        // faces within 2 * budget of p are in p's cell or the 26 around it
-        for (int64_t x = cellOf(p[0]) - 1; x <= cellOf(p[0]) + 1; ++x)
-          for (int64_t y = cellOf(p[1]) - 1; y <= cellOf(p[1]) + 1; ++y)
-            for (int64_t z = cellOf(p[2]) - 1; z <= cellOf(p[2]) + 1; ++z) {
-              auto it = faceCells.find(key(x, y, z));
-              if (it == faceCells.end()) continue;
-              for (int t : it->second) {
-                if (lastSample[size_t(t)] == i) continue;
-                lastSample[size_t(t)] = i;
-                if (boxDistance(boxes[size_t(t)], p) > best * (1 + 1e-4f)) continue;
-                float d;
-                vcg::Point3f q;
-                vcg::TrianglePointDistance(tri[size_t(t)], p, d, q);
-                if (d < best) best = d, bestFace = t;
-              }
+    for (int i : near) {
+      const vcg::Point3f& p = originalSamples_.Point(i);
+      float best = std::numeric_limits<float>::max();
+      int bestFace = -1;
+      // faces within 2 * budget of p are in p's cell or the 26 around it
+      for (int64_t x = cellOf(p[0]) - 1; x <= cellOf(p[0]) + 1; ++x)
+        for (int64_t y = cellOf(p[1]) - 1; y <= cellOf(p[1]) + 1; ++y)
+          for (int64_t z = cellOf(p[2]) - 1; z <= cellOf(p[2]) + 1; ++z) {
+            auto it = faceCells.find(key(x, y, z));
+            if (it == faceCells.end()) continue;
+            for (int t : it->second) {
+              if (lastSample[size_t(t)] == i) continue;
+              lastSample[size_t(t)] = i;
+              if (boxDistance(boxes[size_t(t)], p) > best * (1 + 1e-4f)) continue;
+              float d;
+              vcg::Point3f q;
+              vcg::TrianglePointDistance(tri[size_t(t)], p, d, q);
+              if (d < best) best = d, bestFace = t;
             }
-        // nothing within two budgets among the edited faces around: either the sample belongs
-        // elsewhere (another part of the surface) or the edit moved away from it
-        if (bestFace < 0) continue;
-        if (size_t(bestFace) >= changed.size()) continue;  // closest to an unchanged face
-        const vcg::Triangle3<float>& t = tri[size_t(bestFace)];
-        if (originalSamples_.Normal(i).dot((t.P(1) - t.P(0)) ^ (t.P(2) - t.P(0))) <= 0) continue;
-        mx = std::max(mx, double(best));
-      }
+          }
+      // nothing within two budgets among the edited faces around: either the sample belongs
+      // elsewhere (another part of the surface) or the edit moved away from it
+      if (bestFace < 0) continue;
+      if (size_t(bestFace) >= changed.size()) continue;  // closest to an unchanged face
+      const vcg::Triangle3<float>& t = tri[size_t(bestFace)];
+      if (originalSamples_.Normal(i).dot((t.P(1) - t.P(0)) ^ (t.P(2) - t.P(0))) <= 0) continue;
+      mx = std::max(mx, double(best));
     }
     return mx;
   }

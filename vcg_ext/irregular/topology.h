@@ -90,6 +90,26 @@ VertexStar<MeshType> StarOf(typename MeshType::VertexType* v, int maxValence = 4
     return s;
   }
   Corner<FaceType> start{v->VFp(), v->VFi()};
+  // Most vertices are interior: walk counter-clockwise from the VF entry first; if the fan
+  // closes, that is the star (the rewind below would have come back to `start` after a whole
+  // turn, so the result is the same at half the walking). Only a fan that meets a border, or
+  // runs past the bound, is redone from its clockwise end. Most stars have 5-7 corners: one
+  // allocation each instead of four growths (StarOf's allocations were a quarter of
+  // Automatic Reduction's time).
+  s.corners.reserve(8);
+  s.neighbors.reserve(9);
+  {
+    Corner<FaceType> c = start;
+    for (int guard = 0; guard <= maxValence; ++guard) {
+      s.corners.push_back(c);
+      s.neighbors.push_back(c.f->V((c.z + 1) % 3));
+      c = NextCornerCCW(c);
+      if (c.f == nullptr) break;
+      if (c.f == start.f && c.z == start.z) return s;
+    }
+    s.corners.clear();
+    s.neighbors.clear();
+  }
   // Rewind clockwise to the boundary, if there is one.
   Corner<FaceType> c = start;
   int guard = 0;
@@ -108,10 +128,6 @@ VertexStar<MeshType> StarOf(typename MeshType::VertexType* v, int maxValence = 4
   }
   Corner<FaceType> first = c;
   guard = 0;
-  // Most stars have 5-7 corners: one allocation each instead of four growths (StarOf's
-  // allocations were a quarter of Automatic Reduction's time).
-  s.corners.reserve(8);
-  s.neighbors.reserve(9);
   for (;;) {
     s.corners.push_back(c);
     s.neighbors.push_back(c.f->V((c.z + 1) % 3));
