@@ -292,7 +292,7 @@ Result CheckInvariants(MeshType& m) {
         o << "boundary vertex " << vi << " has valence " << s.Valence() << " (< 2)";
         return Result::Fail(o.str());
       }
-      std::vector<VertexType*> nb = s.neighbors;
+      std::vector<VertexType*> nb(s.neighbors.begin(), s.neighbors.end());
       std::sort(nb.begin(), nb.end());
       if (std::adjacent_find(nb.begin(), nb.end()) != nb.end()) {
         o << "vertex " << vi << " has a duplicate edge";

@@ -90,6 +90,12 @@ class PairTransport {
     const ReductionReport saved = rep;
     GuardedEdit<MeshType> g(guard_, rep, {v, w});
     std::vector<int> touched{v, w};
+    // What no inner guard judged: the moves with pair generation and their relaxation. Each
+    // transport inside judged, on kept, the 2-ring of what it touched, which holds every vertex
+    // its steps and relaxations moved; a face changed later is changed by a later edit, judged
+    // in turn. So the closing check needs only these (it was a second pass over everything, a
+    // tenth of the reduction's time on the bunny).
+    std::vector<int> unjudged{v, w};
     int cur = v;
     for (int hop = 0; hop <= radius && !ed_.Adjacent(cur, w) && !state_.TurnExhausted(); ++hop) {
       // the BFS from w stops at cur's layer: only the neighbours closer than cur matter
@@ -102,10 +108,12 @@ class PairTransport {
         const int to = ops_.NeighbourFrom(cur, -1, d == 5 ? k : k + 1);
         if (to < 0 || !dist.count(to) || dist[to] >= here) continue;
         auto cp = ed_.Mark();
-        const size_t mark = touched.size();
+        const size_t mark = touched.size(), unjudgedMark = unjudged.size();
         AtomicOutcome gen = ops_.MoveWithPairGeneration(cur, k);
         if (!gen) continue;
-        guard_.RelaxAround(state_.Record(gen, touched));
+        const std::vector<int> changed = state_.Record(gen, touched);
+        unjudged.insert(unjudged.end(), changed.begin(), changed.end());
+        guard_.RelaxAround(changed);
         const int moved = gen.irregular[0];
         int p5 = gen.irregular[1], p7 = gen.irregular[2];
         if (ed_.Valence(p5) != 5) std::swap(p5, p7);
@@ -117,6 +125,7 @@ class PairTransport {
           next = moved;
         } else {
           touched.resize(mark);
+          unjudged.resize(unjudgedMark);
           ed_.RollbackTo(cp);
         }
       }
@@ -126,7 +135,8 @@ class PairTransport {
     if (!state_.TurnExhausted() && ed_.IsLive(cur) && ed_.IsLive(w) && ed_.Adjacent(cur, w) &&
         ed_.Valence(cur) + ed_.Valence(w) == 12) {
       const int a5 = ed_.Valence(cur) == 5 ? cur : w, a7 = a5 == cur ? w : cur;
-      if (Transport(rep, a5, a7, opt_.maxTravel, &touched) && g.Accept(touched)) {
+      if (Transport(rep, a5, a7, opt_.maxTravel, &touched) && g.Judge(unjudged)) {
+        g.Keep(touched);
         ++rep.splitAbsorptions;
         return true;
       }

@@ -28,6 +28,7 @@
 #include <vcg/simplex/face/pos.h>
 
 #include "result.h"
+#include "small_vector.h"
 
 namespace vcg_ext {
 namespace irregular {
@@ -66,8 +67,9 @@ template <class MeshType>
 struct VertexStar {
   typedef typename MeshType::FaceType FaceType;
   typedef typename MeshType::VertexType VertexType;
-  std::vector<Corner<FaceType>> corners;
-  std::vector<VertexType*> neighbors;
+  // Inline storage (small_vector.h): building a star allocates nothing up to valence 12.
+  SmallVector<Corner<FaceType>, 12> corners;
+  SmallVector<VertexType*, 13> neighbors;
   bool boundary = false;
   bool manifold = true;  ///< false if the walk did not close or exceeded the bound
   int Valence() const { return int(neighbors.size()); }
@@ -93,11 +95,7 @@ VertexStar<MeshType> StarOf(typename MeshType::VertexType* v, int maxValence = 4
   // Most vertices are interior: walk counter-clockwise from the VF entry first; if the fan
   // closes, that is the star (the rewind below would have come back to `start` after a whole
   // turn, so the result is the same at half the walking). Only a fan that meets a border, or
-  // runs past the bound, is redone from its clockwise end. Most stars have 5-7 corners: one
-  // allocation each instead of four growths (StarOf's allocations were a quarter of
-  // Automatic Reduction's time).
-  s.corners.reserve(8);
-  s.neighbors.reserve(9);
+  // runs past the bound, is redone from its clockwise end.
   {
     Corner<FaceType> c = start;
     for (int guard = 0; guard <= maxValence; ++guard) {
