@@ -98,7 +98,6 @@ class EditGuard {
     }
     RelaxOptions ro;
     ro.iterations = opt_.localRelaxIterations;
-    ro.reprojectLastSweepOnly = true;
     LocalRelax(m_, movable, &original_, ro);
   }
 

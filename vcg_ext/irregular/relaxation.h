@@ -138,9 +138,6 @@ struct RelaxOptions {
   int iterations = 10;            ///< sweeps (local) or solve-and-project rounds (global)
   double step = 0.5;              ///< local: share of the way to the target per sweep
   bool reproject = true;          ///< project moved vertices onto the original surface
-  bool reprojectLastSweepOnly = false;  ///< local: with reproject, project in the last sweep only (the
-                                  ///< sweeps before move in the tangent plane, off the surface by the
-                                  ///< square of a step times its curvature)
   double featureAngleDeg = 0;     ///< > 0: vertices on edges whose dihedral angle exceeds this stay fixed
   double regularization = 0.1;    ///< global: weight that keeps each vertex near its current position
   double minFaceTurnCos = 0.2;    ///< a move is refused if an incident face normal turns beyond acos(this)
@@ -326,8 +323,7 @@ RelaxReport LocalRelax(MeshType& m, const std::vector<int>& region, const Surfac
         ++rep.rejected;
         continue;
       }
-      if (opt.reproject && original && (!opt.reprojectLastSweepOnly || it + 1 == opt.iterations))
-        p = CoordType::Construct(original->Closest(vcg::Point3f::Construct(p)));
+      if (opt.reproject && original) p = CoordType::Construct(original->Closest(vcg::Point3f::Construct(p)));
       if (relax_detail::MoveHurts<MeshType>(st, vp, p, opt.minFaceTurnCos)) {
         ++rep.rejected;
         continue;
