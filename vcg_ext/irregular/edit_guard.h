@@ -137,10 +137,11 @@ class EditGuard {
     // the local relaxation after an edit moves its 2-ring, which changes the faces up to there
     const std::vector<int> region = KRing(m_, live, 2);
     std::vector<const FaceType*> changed, all;
-    std::unordered_set<const FaceType*> seen;
+    faceSeen_.Begin(m_.face.size());
+    auto seenInsert = [&](const FaceType* f) { return faceSeen_.Insert(size_t(f - &m_.face[0])); };
     for (int v : region)
       for (auto& c : ed_.Star(v).corners)
-        if (seen.insert(c.f).second) changed.push_back(c.f);
+        if (seenInsert(c.f)) changed.push_back(c.f);
     // (a) each changed face's centroid and edge midpoints (an edge shared by two changed faces
     // once) against the input; a query looks no farther than just past the budget
     const float reach = float(1.01 * budget_) + 1e-12f;
@@ -155,7 +156,7 @@ class EditGuard {
       if (!probe(CoordType((f->cP(0) + f->cP(1) + f->cP(2)) / 3))) return mx;
       for (int z = 0; z < 3; ++z) {
         const FaceType* g = f->cFFp(z);
-        if (g != f && g < f && seen.count(g)) continue;  // that edge is probed from g
+        if (g != f && g < f && faceSeen_.Contains(size_t(g - &m_.face[0]))) continue;  // probed from g
         if (!probe(CoordType((f->cP(z) + f->cP((z + 1) % 3)) / 2))) return mx;
       }
     }
@@ -183,7 +184,7 @@ class EditGuard {
     all = changed;
     for (int v : KRing(m_, region, 1))
       for (auto& c : ed_.Star(v).corners)
-        if (seen.insert(c.f).second) all.push_back(c.f);
+        if (seenInsert(c.f)) all.push_back(c.f);
     const float cellSize = float(std::max(2 * budget_, 1e-12));
     auto key = [&](int64_t x, int64_t y, int64_t z) {
       return (uint64_t(x & 0x1FFFFF) << 42) | (uint64_t(y & 0x1FFFFF) << 21) | uint64_t(z & 0x1FFFFF);
@@ -322,6 +323,7 @@ class EditGuard {
   double budget_ = 0;           ///< per-edit Hausdorff budget (absolute), tightened by retries
   double samplesPerEdge_ = 0;   ///< input samples per edge length besides sharp edges, raised by retries
   SampleGrid originalSamples_;  ///< the input's samples, for DeviationAround()
+  StampSet faceSeen_;           ///< DeviationAround's set of the faces it gathered
 };
 
 /// The scope of one guarded edit: remembers the checkpoint and the angle quality before;

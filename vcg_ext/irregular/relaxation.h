@@ -40,6 +40,7 @@
 #include <vcg/complex/complex.h>
 
 #include "surface_projector.h"
+#include "stamp_set.h"
 #include "topology.h"
 
 namespace vcg_ext {
@@ -169,18 +170,22 @@ struct RelaxReport {
 /// Vertices within k edges of the seeds (k = 0: the seeds). O(size of the ring).
 template <class MeshType>
 std::vector<int> KRing(MeshType& m, const std::vector<int>& seeds, int k) {
-  std::unordered_set<int> seen(seeds.begin(), seeds.end());
-  std::vector<int> frontier(seen.begin(), seen.end());
+  static thread_local StampSet seen;  // one per thread: KRing never calls itself
+  seen.Begin(m.vert.size());
+  std::vector<int> out, frontier;
+  for (int v : seeds)
+    if (seen.Insert(size_t(v))) frontier.push_back(v);
+  out = frontier;
   for (int r = 0; r < k; ++r) {
     std::vector<int> next;
     for (int v : frontier)
       for (auto n : StarOf<MeshType>(&m.vert[size_t(v)]).neighbors) {
         const int ni = int(vcg::tri::Index(m, n));
-        if (seen.insert(ni).second) next.push_back(ni);
+        if (seen.Insert(size_t(ni))) next.push_back(ni);
       }
+    out.insert(out.end(), next.begin(), next.end());
     frontier.swap(next);
   }
-  std::vector<int> out(seen.begin(), seen.end());
   std::sort(out.begin(), out.end());
   return out;
 }
