@@ -462,7 +462,8 @@ class EditSession {
       for (int v : {a, b})
         if (Live(v)) seeds.push_back(v);
     } else if (a != b && StarOf<MeshType>(&m_.vert[size_t(a)]).IndexOf(&m_.vert[size_t(b)]) < 0) {
-      ConnectingPath c = SeparatrixTracer<MeshType>(m_).Connect(a, b, CompositeOpt().maxTransportSteps);
+      SeparatrixTracer<MeshType> tracer(m_);
+      ConnectingPath c = ConnectByDeepening(tracer, m_, a, b, CompositeOpt().maxTransportSteps);
       if (c) {
         std::vector<int> cv = c.Vertices();
         seeds.insert(seeds.end(), cv.begin(), cv.end());
