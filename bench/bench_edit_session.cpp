@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <random>
 #include <string>
 #include <vector>
@@ -136,6 +137,20 @@ int main(int argc, char** argv) {
     press.Add(Ms(a, c));
     pressCpu.Add(cpu);
   }
+  // what the steps did, to compare two builds: a hash of every position and face corner
+  unsigned long long h = 1469598103934665603ull;
+  auto mix = [&h](unsigned long long x) { h = (h ^ x) * 1099511628211ull; };
+  for (const auto& v : m.vert)
+    for (int c = 0; c < 3; ++c) {
+      float f = v.cP()[c];
+      unsigned int bits;
+      std::memcpy(&bits, &f, sizeof bits);
+      mix(bits);
+    }
+  for (const auto& f : m.face)
+    for (int c = 0; c < 3; ++c) mix((unsigned long long)(f.cV(c) - &m.vert[0]));
+  std::printf("after %d steps: %zu vertices, %zu faces, pair %d-%d, state hash %016llx\n", done, m.vert.size(),
+              m.face.size(), s.Lead(), s.Partner(), h);
   while (s.UndoDepth() > 0) {
     auto a = Clock::now();
     s.Undo();

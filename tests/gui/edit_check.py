@@ -44,8 +44,15 @@ def prepare(a):
     ms = load_ms(a.mesh)
     m = ms.current_mesh()
     v, f = m.vertex_matrix(), m.face_matrix()
-    sel = set(a.pair)
-    with open(a.out, "w") as out:
+    write_ply(a.out, v, f, a.pair)
+    print("edit_check: %s: %d vertices, %d faces, vertices %s selected" % (a.out, len(v), len(f), sorted(a.pair)))
+
+
+def write_ply(path, v, f, selected):
+    """An ASCII PLY whose vertex flags select exactly `selected` (MeshLab reads the selection
+    from the 'flags' property)."""
+    sel = set(selected)
+    with open(path, "w") as out:
         out.write("ply\nformat ascii 1.0\nelement vertex %d\nproperty float x\nproperty float y\nproperty float z\n"
                   "property int flags\nelement face %d\nproperty list uchar int vertex_indices\nend_header\n"
                   % (len(v), len(f)))
@@ -53,7 +60,6 @@ def prepare(a):
             out.write("%.9g %.9g %.9g %d\n" % (p[0], p[1], p[2], 0x20 if i in sel else 0))
         for t in f:
             out.write("3 %d %d %d\n" % tuple(t))
-    print("edit_check: %s: %d vertices, %d faces, vertices %s selected" % (a.out, len(v), len(f), sorted(sel)))
 
 
 def reference(a):
@@ -80,6 +86,25 @@ def tri_of_ply(path):
     return fo.Tri(v, f)
 
 
+def load_and_compare_counts(a):
+    """The input I, the exported mesh E and the reference R (with its npz) of a check: E must
+    be a valid mesh (the oracle's invariants) with R's vertex and face counts and R's valence
+    histogram (a step or a cancellation may split or collapse: the counts need not be I's)."""
+    ti = tri_of_ply(a.input)
+    te = tri_of_ply(a.output)
+    r = np.load(a.reference)
+    tr = fo.Tri(r["v"], r["f"])
+    fo.check_invariants(te)
+    if len(te.vertices) != len(tr.vertices) or len(te.faces) != len(tr.faces):
+        fail("counts differ from the reference: %d/%d vertices, %d/%d faces (exported/reference; input %d/%d)"
+             % (len(te.vertices), len(tr.vertices), len(te.faces), len(tr.faces), len(ti.vertices), len(ti.faces)))
+    hr = np.bincount(fo.valences(tr), minlength=20)
+    he = np.bincount(fo.valences(te), minlength=20)
+    if not np.array_equal(hr, he):
+        fail("valence histogram differs from the reference's: %s, reference %s" % (he.tolist(), hr.tolist()))
+    return ti, te, tr, r
+
+
 def irregular_set(t):
     val = fo.valences(t)
     mask = fo.irregular_mask(t)
@@ -99,18 +124,7 @@ def check(a):
        I's lie within half a mean edge length of R's pair, with R's valences (5 and 7).
     The relaxation of the tool and of the filter may place the relaxed ring differently, so
     positions near the pair are compared with a tolerance, connectivity by valence."""
-    ti = tri_of_ply(a.input)
-    te = tri_of_ply(a.output)
-    r = np.load(a.reference)
-    tr = fo.Tri(r["v"], r["f"])
-    fo.check_invariants(te)
-    if len(te.vertices) != len(tr.vertices) or len(te.faces) != len(tr.faces):
-        fail("counts differ from the reference: %d/%d vertices, %d/%d faces (exported/reference; input %d/%d)"
-             % (len(te.vertices), len(tr.vertices), len(te.faces), len(tr.faces), len(ti.vertices), len(ti.faces)))
-    hr = np.bincount(fo.valences(tr), minlength=20)
-    he = np.bincount(fo.valences(te), minlength=20)
-    if not np.array_equal(hr, he):
-        fail("valence histogram differs from the reference's: %s, reference %s" % (he.tolist(), hr.tolist()))
+    ti, te, tr, r = load_and_compare_counts(a)
     edge = fo.mean_edge_length(ti)
     tol = 1e-5 * fo.diagonal(ti)
 
@@ -158,6 +172,140 @@ def check(a):
              int(far_e.sum()), int(others.sum())))
 
 
+# --- triple / quadruple cancellation (keys T and Q of the tool) --------------------------------------
+def adjacent_pairs(t, group):
+    """The 5-7 pairs (v5, v7) among `group` whose two vertices share an edge, sorted."""
+    val = fo.valences(t)
+    return sorted((a, b) for a in group for b in group
+                  if val[a] == 5 and val[b] == 7 and fo.adjacent(t, a, b))
+
+
+def prepare_cancel(a):
+    """An icosphere (pymeshlab's create_sphere, `subdiv` levels: 12 v5 far apart, the rest
+    regular) in which the filter "Irregular Vertices: Generate" made a 5-5-7 triple (from a v5)
+    or a 5-5-7-7 quadruple (from the regular vertex farthest from every v5), its 5-7 pair moved
+    2 steps away. The PLY selects one adjacent 5-7 pair of the group (the tool picks it from
+    the selection); the JSON names the group, the pair and the expected survivor's valence."""
+    import json
+    import pymeshlab
+    pymeshlab.load_plugin(a.plugin)
+    ms = pymeshlab.MeshSet()
+    ms.create_sphere(subdiv=a.subdiv)
+    m = ms.current_mesh()
+    t = fo.Tri(m.vertex_matrix(), m.face_matrix())
+    val = fo.valences(t)
+    v5s = np.nonzero(val == 5)[0]
+    if a.kind == "triple":
+        seed, kind = int(v5s[0]), 0
+    else:
+        from scipy.spatial import cKDTree
+        reg = np.nonzero(val == 6)[0]
+        d, _ = cKDTree(t.vertices[v5s]).query(t.vertices[reg])
+        seed, kind = int(reg[int(np.argmax(d))]), 1
+    ms.compute_selection_by_condition_per_vertex(condselect="vi == %d" % seed)
+    ms.apply_filter("meshing_irregular_generate", kind=kind, direction=0, spacing=2)
+    m = ms.current_mesh()
+    group = [int(i) for i in np.nonzero(m.vertex_selection_array())[0]]
+    t = fo.Tri(m.vertex_matrix(), m.face_matrix())
+    want = [5, 5, 7] if a.kind == "triple" else [5, 5, 7, 7]
+    if sorted(fo.valences(t)[group].tolist()) != want:
+        fail("Generate made valences %s, not %s" % (sorted(fo.valences(t)[group].tolist()), want))
+    pairs = adjacent_pairs(t, group)
+    if not pairs:
+        fail("no adjacent 5-7 pair in the generated %s %s" % (a.kind, group))
+    pair = list(pairs[0])
+    write_ply(a.out, m.vertex_matrix().astype(np.float32), m.face_matrix(), pair)
+    with open(a.group_out, "w") as f:
+        json.dump({"kind": a.kind, "group": group, "pair": pair}, f)
+    print("edit_check: %s: icosphere (%d vertices) with the %s %s (valences %s); the pair %s selected"
+          % (a.out, len(t.vertices), a.kind, group, fo.valences(t)[group].tolist(), pair))
+
+
+def reference_cancel(a):
+    """The filter "Irregular Vertices: Cancel Triple / Quadruple" on the input PLY with the
+    whole group selected: the expected result of key T / Q (same CompositeOperations call)."""
+    import json
+    import pymeshlab
+    g = json.load(open(a.group))
+    pymeshlab.load_plugin(a.plugin)
+    ms = load_ms(a.input)
+    ms.compute_selection_by_condition_per_vertex(condselect=" || ".join("(vi == %d)" % i for i in g["group"]))
+    name = "meshing_irregular_cancel_triple" if g["kind"] == "triple" else "meshing_irregular_cancel_quadruple"
+    ms.apply_filter(name, relax=True, colorize=False)
+    m = ms.current_mesh()
+    np.savez(a.out, v=m.vertex_matrix(), f=m.face_matrix())
+    print("edit_check: reference %s: %s of %s by the filter: %d vertices, %d faces"
+          % (a.out, name, g["group"], len(m.vertex_matrix()), len(m.face_matrix())))
+
+
+def check_cancel(a):
+    """The mesh E exported after key T (Q) against the input I and the reference R (the Cancel
+    Triple / Quadruple filter on I):
+    1. E is a valid mesh (the oracle's invariants) with R's vertex and face counts and R's
+       valence histogram;
+    2. the group's vertices are gone: every irregular vertex of I outside the group is in E at
+       the same position (exactly) with its valence, and E has exactly one more irregular
+       vertex for a triple (the survivor, of R's survivor's valence and within half a mean
+       edge of it) and none for a quadruple;
+    3. nothing changed beyond the cancellation's region: every vertex of I more than `hops`
+       edges from the group is in E at the same position (exactly), and every other vertex of E
+       lies within a mean edge length of an input vertex at most `hops` edges from the group;
+    4. E and R agree: every vertex of E within `tol` of a vertex of R (the tool and the filter
+       run the same cancellation; the vertex order differs: the tool compacts the mesh by
+       moving the last vertices into the holes)."""
+    import json
+    from scipy.spatial import cKDTree
+    g = json.load(open(a.group))
+    group = g["group"]
+    ti, te, tr, _ = load_and_compare_counts(a)
+    exact = 1e-6 * fo.diagonal(ti)  # PLY float round trip
+    edge = fo.mean_edge_length(ti)
+    tree_e = cKDTree(te.vertices)
+    # 2. the irregular vertices
+    vi, ve, vr = fo.valences(ti), fo.valences(te), fo.valences(tr)
+    irr_i = [int(v) for v in np.nonzero(fo.irregular_mask(ti))[0] if v not in group]
+    d, j = tree_e.query(ti.vertices[irr_i])
+    if (d > exact).any() or (ve[j] != vi[irr_i]).any():
+        k = int(np.argmax(d))
+        fail("an irregular vertex outside the group moved or changed valence: input vertex %d (distance %.3g)"
+             % (irr_i[k], d[k]))
+    irr_e = set(np.nonzero(fo.irregular_mask(te))[0].tolist())
+    new = sorted(irr_e - set(j.tolist()))
+    irr_r = np.nonzero(fo.irregular_mask(tr))[0]
+    new_r = [int(v) for v in irr_r if cKDTree(ti.vertices[irr_i]).query(tr.vertices[v])[0] > exact]
+    expect = 1 if g["kind"] == "triple" else 0
+    if len(new) != expect or len(new_r) != expect:
+        fail("%d irregular vertices of the exported mesh (%d of the reference) are not the input's; expected %d "
+             "(the group %s cancelled%s)" % (len(new), len(new_r), expect, group,
+                                            " to one survivor" if expect else ""))
+    for v in new:
+        if ve[v] != vr[new_r[0]] or np.linalg.norm(te.vertices[v] - tr.vertices[new_r[0]]) > 0.5 * edge:
+            fail("the survivor (valence %d at %s) is not the reference's (valence %d at %s)"
+                 % (ve[v], te.vertices[v].tolist(), vr[new_r[0]], tr.vertices[new_r[0]].tolist()))
+    # 3. the region
+    hops = fo.hop_distances(ti, group)
+    far = np.nonzero(hops > a.hops)[0]
+    d, j = tree_e.query(ti.vertices[far])
+    if (d > exact).any():
+        fail("%d input vertices more than %d edges from the group moved" % (int((d > exact).sum()), a.hops))
+    rest = np.ones(len(te.vertices), bool)
+    rest[j] = False
+    near = np.nonzero(hops <= a.hops)[0]
+    dg, _ = cKDTree(ti.vertices[near]).query(te.vertices[rest])
+    if (dg > edge).any():
+        fail("%d exported vertices are new or moved, farther than a mean edge from the input's vertices within %d "
+             "edges of the group" % (int((dg > edge).sum()), a.hops))
+    # 4. the reference
+    dr, _ = cKDTree(tr.vertices).query(te.vertices)
+    if dr.max() > a.tol * edge:
+        fail("the exported mesh differs from the filter's result: a vertex %.3g mean edge lengths from every "
+             "reference vertex" % (dr.max() / edge))
+    print("edit_check: PASS the %s %s is cancelled%s; %d vertices more than %d edges away unchanged (%d nearer "
+          "may change); the filter's result within %.2g mean edge lengths"
+          % (g["kind"], group, " (one v%d left)" % ve[new[0]] if new else "", len(far), a.hops, int(rest.sum()),
+             dr.max() / edge))
+
+
 def main():
     ap = argparse.ArgumentParser()
     sub = ap.add_subparsers(dest="cmd", required=True)
@@ -177,8 +325,27 @@ def main():
     p.add_argument("--output", required=True)
     p.add_argument("--reference", required=True)
     p.add_argument("--pair", type=int, nargs=2, required=True)
+    p = sub.add_parser("prepare-cancel")
+    p.add_argument("--kind", choices=["triple", "quadruple"], required=True)
+    p.add_argument("--subdiv", type=int, default=4)
+    p.add_argument("--plugin", required=True)
+    p.add_argument("--out", required=True)
+    p.add_argument("--group-out", required=True)
+    p = sub.add_parser("reference-cancel")
+    p.add_argument("--input", required=True)
+    p.add_argument("--group", required=True)
+    p.add_argument("--plugin", required=True)
+    p.add_argument("--out", required=True)
+    p = sub.add_parser("check-cancel")
+    p.add_argument("--input", required=True)
+    p.add_argument("--output", required=True)
+    p.add_argument("--reference", required=True)
+    p.add_argument("--group", required=True)
+    p.add_argument("--hops", type=int, default=8, help="the cancellation's region: edges from the group")
+    p.add_argument("--tol", type=float, default=0.05, help="agreement with the filter, in mean edge lengths")
     a = ap.parse_args()
-    {"prepare": prepare, "reference": reference, "check": check}[a.cmd](a)
+    {"prepare": prepare, "reference": reference, "check": check, "prepare-cancel": prepare_cancel,
+     "reference-cancel": reference_cancel, "check-cancel": check_cancel}[a.cmd](a)
 
 
 if __name__ == "__main__":

@@ -13,6 +13,10 @@ edit_test.sh, which provides the X server, the D-Bus session and the settings fo
   the tool logs that it compacted the mesh, which clears the undo history) -> a click on
   the mesh (must pick a pair or say why not; screenshot, the README picture) -> File > Exit
 
+With --cancel T (Q), instead of the steps: File > Export Mesh As... <before> -> key T (Q)
+(must log "triple cancelled" / "quadruple cancelled") -> export <ply> -> Ctrl+Z (must log
+"undone") -> export <undone> -> File > Exit (edit_test.sh checks the three files).
+
 Screenshots of every step go to --out. Exits 1 with a "gui: FAIL ..." line naming the step
 that failed.
 """
@@ -43,6 +47,11 @@ def main():
                     help="before the tool starts, drag the view this many pixels to the right (trackball), "
                          "so that the pair faces the camera in the screenshot")
     ap.add_argument("--zoom", type=int, default=0, help="then this many wheel notches (zoom in)")
+    ap.add_argument("--cancel", choices=["T", "Q"], default="",
+                    help="instead of the steps: export --before, key T (Q) must cancel the triple (quadruple) "
+                         "the selected pair is part of, export --ply, Ctrl+Z must undo it, export --undone")
+    ap.add_argument("--before", default="", help="--cancel: the export before the key press")
+    ap.add_argument("--undone", default="", help="--cancel: the export after Ctrl+Z")
     return run_meshlab(ap.parse_args(), session)
 
 
@@ -100,10 +109,6 @@ def session(a, a11y, proc):
     run("xdotool", "click", "5")
     time.sleep(0.5)
 
-    # 3. the steps: one key press each, each must be logged as done; then Ctrl+Z undoes the
-    # last one and Ctrl+Y redoes it (the export must still be "steps" steps from the start)
-    done_re = re.compile(r"step in direction %s done" % re.escape(a.key))
-
     def press(keys, what, ok):
         before = len(tool_lines(g))
         g.key(keys)
@@ -120,6 +125,12 @@ def session(a, a11y, proc):
         log("%s: %s" % (what, line))
         time.sleep(0.5)
 
+    if a.cancel:
+        return cancel_session(a, g, proc, press)
+
+    # 3. the steps: one key press each, each must be logged as done; then Ctrl+Z undoes the
+    # last one and Ctrl+Y redoes it (the export must still be "steps" steps from the start)
+    done_re = re.compile(r"step in direction %s done" % re.escape(a.key))
     for i in range(a.steps):
         press(a.key, "step %d" % (i + 1), done_re.search)
     press("ctrl+z", "Ctrl+Z (undo the last step)", lambda ln: "undone" in ln)
@@ -209,6 +220,27 @@ def session(a, a11y, proc):
         readme_picture(shot, a.readme_png, "%dx%d+%d+%d" % (w, h - 40, x, y))
 
     # 7. quit
+    quit_meshlab(g, proc)
+
+
+def cancel_session(a, g, proc, press):
+    """Key T (Q) on a pair that is part of a triple (quadruple): export the mesh before, the
+    key must log "triple cancelled" ("quadruple cancelled"), export after, Ctrl+Z must log
+    "undone", export again (edit_test.sh compares that file with the first, byte for byte),
+    quit."""
+    what = "triple" if a.cancel == "T" else "quadruple"
+    export_mesh(g, a.before, ())
+    press(a.cancel.lower(), "key %s (cancel the %s)" % (a.cancel, what),
+          lambda ln: (what + " cancelled") in ln and "not cancelled" not in ln)
+    time.sleep(1.5)  # the repaint with the re-uploaded buffers
+    g.shot("after_%s" % what)
+    export_mesh(g, a.ply, ())
+    press("ctrl+z", "Ctrl+Z (undo the %s cancellation)" % what, lambda ln: "undone" in ln)
+    time.sleep(1.0)
+    g.shot("after_undo")
+    export_mesh(g, a.undone, ())
+    with open(os.path.join(a.out, "meshlab_gui_log.txt"), "w") as f:
+        f.write(g.log_text().replace("\u2028", "\n") + "\n")
     quit_meshlab(g, proc)
 
 

@@ -209,6 +209,7 @@ def apply_filter(a, g):
 def export_mesh(g, ply, vert_options=()):
     """File > Export Mesh As... <ply>, with the export options Vert > <vert_options> checked."""
     # 5. File > Export Mesh As...
+    saved_before = g.log_text().count("Saved Mesh")
     g.open_menu_path(["File", "Export Mesh As..."], "menu_export")
     def file_dialog():
         for f in g.frames():
@@ -256,7 +257,7 @@ def export_mesh(g, ply, vert_options=()):
     # 7. the file: MeshLab logs "Saved Mesh <path>"
     def saved():
         g.check_alive("saving")
-        return "Saved Mesh" in g.log_text() and os.path.exists(ply)
+        return g.log_text().count("Saved Mesh") > saved_before and os.path.exists(ply)
     try:
         wait_for("'Saved Mesh' in the log and %s on disk" % ply, saved, 60)
     except GuiError as e:

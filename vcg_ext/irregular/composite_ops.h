@@ -59,6 +59,42 @@ struct CompositeOutcome {
   explicit operator bool() const { return result.ok; }
 };
 
+/// SeparatrixTracer::Connect(a, b, maxLength), the same path, by iterative deepening:
+/// Connect traces every ray of a and b to its bound, so a full call costs
+/// (d(a) + d(b)) * maxLength star queries even for vertices a few edges apart. Here Connect
+/// runs with segment bounds 8, 32, 128, ... and stops at the first bound B that holds the
+/// path found (Length() <= B): every path as short, and the same tie-break order, lies within
+/// B, so the full call finds the same path - with one exception, checked: Connect remembers
+/// only the first ray of a (in star order) to reach each vertex, so where a ray of a wraps
+/// around a closed surface and crosses the path beyond B, the full call sees that crossing
+/// instead. The rays of a before the path's own are traced to maxLength for it; if one
+/// meets the path beyond B, the full call is made. Cost O((d(a) + d(b)) * L) for a path of
+/// length L, plus up to d(a) full rays; at most about 2 full calls when there is no path.
+template <class MeshType>
+ConnectingPath ConnectByDeepening(SeparatrixTracer<MeshType>& tracer, MeshType& m, int a, int b, int maxLength) {
+  for (int bound = std::min(8, maxLength);; bound = std::min(maxLength, 4 * bound)) {
+    ConnectingPath p = tracer.Connect(a, b, bound);
+    if (bound >= maxLength) return p;
+    if (!p || p.Length() > bound) continue;
+    // the exception: a ray of a before the path's first edge that meets the path beyond the
+    // bound (Connect's loop over a's rays: up to b, the last vertex only if regular)
+    const std::vector<int> path = p.Vertices();
+    const VertexStar<MeshType> star = StarOf<MeshType>(&m.vert[size_t(a)]);
+    const int own = star.IndexOf(&m.vert[size_t(path[1])]);
+    bool crossed = false;
+    for (int r = 0; r < own && !crossed; ++r) {
+      const Separatrix ray = tracer.Trace(a, int(vcg::tri::Index(m, star.neighbors[size_t(r)])), maxLength);
+      const bool lastIsRegular = ray.end == Separatrix::End::MaxLength || ray.end == Separatrix::End::Loop;
+      for (int i = 1; i <= ray.Length() && !crossed; ++i) {
+        const int v = ray.vertices[size_t(i)];
+        if (v == b || (i == ray.Length() && !lastIsRegular)) break;
+        crossed = i > bound && std::find(path.begin(), path.end(), v) != path.end();
+      }
+    }
+    return crossed ? tracer.Connect(a, b, maxLength) : p;
+  }
+}
+
 template <class MeshType>
 class CompositeOperations {
  public:
@@ -518,6 +554,16 @@ class CompositeOperations {
   /// irregular vertex is touched), over flips, collapses and also vertex splits (fig. 7 read
   /// backwards turns its collapses into splits, sec. 6.2; MoveWithPairRemoval tries no split).
   AtomicOutcome RemovalWithSurvivor(const std::vector<int>& group, const std::function<bool(int)>& acceptSurvivor) {
+    if (!WithinTwoEdges(group)) {
+      // FindAndApply's candidates (atomic_ops.h) must touch the whole group, and what one
+      // operation touches (a flip's or a collapse's two triangles, a split's vertex and two
+      // of its neighbours) lies within 2 edges of each other: no candidate exists, so its
+      // enumeration (hundreds of predictions) is skipped. The common case: the transport
+      // asks before every step whether the pair has arrived.
+      AtomicOutcome none;
+      none.result = Result::Fail("no single flip, collapse or split around these vertices does it");
+      return none;
+    }
     int n5 = 0;
     for (int v : group) n5 += ed_.Valence(v) == 5;
     const int survivorValence = n5 == 2 ? 5 : 7;
@@ -538,6 +584,23 @@ class CompositeOperations {
     }, Str(n5 == 2 ? "5-5-7" : "5-7-7", " triple cancelled into one v", survivorValence), true);
   }
 
+  /// Every two vertices of `group` live and at most 2 edges apart (the same, adjacent, or
+  /// with a common neighbour). O(|group|^2 * valence^2).
+  bool WithinTwoEdges(const std::vector<int>& group) {
+    for (int v : group)
+      if (!ed_.IsLive(v)) return false;
+    std::vector<VertexStar<MeshType>> stars;
+    for (int v : group) stars.push_back(ed_.Star(v));
+    for (size_t i = 0; i < group.size(); ++i)
+      for (size_t j = i + 1; j < group.size(); ++j) {
+        if (group[i] == group[j] || stars[i].IndexOf(ed_.V(group[j])) >= 0) continue;
+        const auto& a = stars[i].neighbors;
+        const auto& b = stars[j].neighbors;
+        if (std::find_first_of(a.begin(), a.end(), b.begin(), b.end()) == a.end()) return false;
+      }
+    return true;
+  }
+
   /// How well the step (lead: leadFrom -> newLead, partner: partnerFrom -> newPartner) realises
   /// sec. 7.1: for a 5-7 pair (translate) the cosine between the two displacements, plus
   /// kShapeKept when the connecting path keeps its segment lengths (and its turn, when they
@@ -551,7 +614,7 @@ class CompositeOperations {
     double sc = c;
     if (before) {
       SeparatrixTracer<MeshType> tracer(ed_.Mesh());
-      ConnectingPath after = tracer.Connect(newLead, newPartner, opt_.maxTransportSteps);
+      ConnectingPath after = ConnectByDeepening(tracer, ed_.Mesh(), newLead, newPartner, opt_.maxTransportSteps);
       if (after && after.L1() == before.L1() && after.L2() == before.L2() &&
           (before.L1() == before.L2() || after.turnTriangles == before.turnTriangles))
         sc += kShapeKept;
@@ -645,7 +708,7 @@ class CompositeOperations {
     const int x = ops_.NeighbourFrom(lead, -1, j);
     if (x < 0) return Result::Fail(Str("vertex ", lead, " has no neighbour ", j));
     SeparatrixTracer<MeshType> tracer(ed_.Mesh());
-    const ConnectingPath before = tracer.Connect(lead, partner, opt_.maxTransportSteps);
+    const ConnectingPath before = ConnectByDeepening(tracer, ed_.Mesh(), lead, partner, opt_.maxTransportSteps);
     const CoordType leadFrom = ed_.V(lead)->P(), partnerFrom = ed_.V(partner)->P();
     const std::vector<LeadFlip> flips = LeadFlips(lead, j);
     int bestFlip = -1;
@@ -870,7 +933,7 @@ class CompositeOperations {
     ConnectingPath best;
     for (int from : {p5, p7})
       for (int t : targets) {
-        ConnectingPath p = tracer.Connect(from, t, opt_.maxTransportSteps);
+        ConnectingPath p = ConnectByDeepening(tracer, ed_.Mesh(), from, t, opt_.maxTransportSteps);
         if (p && (!best || p.Length() < best.Length())) best = p;
       }
     along->clear();

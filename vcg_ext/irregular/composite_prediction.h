@@ -160,7 +160,8 @@ class CompositePredictor {
         std::vector<int> p = Path(seeds[a], seeds[b], opt_.maxTransportSteps);
         out.insert(out.end(), p.begin(), p.end());
         // the connecting path of two separatrix segments (sec. 7.1.1) the transport follows
-        ConnectingPath c = SeparatrixTracer<MeshType>(m_).Connect(seeds[a], seeds[b], opt_.maxTransportSteps);
+        SeparatrixTracer<MeshType> tracer(m_);
+        ConnectingPath c = ConnectByDeepening(tracer, m_, seeds[a], seeds[b], opt_.maxTransportSteps);
         if (c) {
           std::vector<int> cv = c.Vertices();
           out.insert(out.end(), cv.begin(), cv.end());

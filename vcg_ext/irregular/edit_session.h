@@ -38,8 +38,10 @@
 // Direction(k) computes one, for a GUI that spreads the trials over idle ticks.
 // Cost (bench/bench_edit_session.cpp, 1M-face torus): an adjacent 5-7 pair's key press (Step +
 // the six trials of the next Directions) is about 1 ms (median); a pair far apart moves by the
-// sec. 7.1.1 pipeline of composite_ops.h, whose single step costs tens of ms (not O(mesh):
-// the same on 100k faces), so its six trials take hundreds of ms.
+// sec. 7.1.1 pipeline of composite_ops.h, whose single step costs 1-50 ms (its transport:
+// atomic moves with relaxation and, where the path is blocked, Detour's search up to 5 moves
+// deep; not O(mesh)), so a key press with its six trials costs a median of about 55 ms of CPU
+// for a 5-7 pair several edges apart and 120 ms for a 5-5 pair (up to a few hundred ms).
 //
 // Direction k is the Move Pair filter's `direction` parameter (filter_composite.cpp passes it
 // unchanged to CompositeOperations::MovePair): for an adjacent 5-7 pair the atomic move k of
@@ -462,7 +464,8 @@ class EditSession {
       for (int v : {a, b})
         if (Live(v)) seeds.push_back(v);
     } else if (a != b && StarOf<MeshType>(&m_.vert[size_t(a)]).IndexOf(&m_.vert[size_t(b)]) < 0) {
-      ConnectingPath c = SeparatrixTracer<MeshType>(m_).Connect(a, b, CompositeOpt().maxTransportSteps);
+      SeparatrixTracer<MeshType> tracer(m_);
+      ConnectingPath c = ConnectByDeepening(tracer, m_, a, b, CompositeOpt().maxTransportSteps);
       if (c) {
         std::vector<int> cv = c.Vertices();
         seeds.insert(seeds.end(), cv.begin(), cv.end());
