@@ -80,6 +80,7 @@ CREASE_ANGLE = 60.0
 # Settings of the plot (label, overrides of OURS_PARAMS); the default setting is the table's run.
 PLOT_SETTINGS = [("budget 0.25%", {"hausdorffbudget": 0.25}), ("budget 1%", {"hausdorffbudget": 1.0}),
                  ("maxTravel 6", {"maxtravel": 6}), ("maxTravel 24", {"maxtravel": 24})]
+THOROUGH = "maxTravel 24"  # the documented thorough setting (README): the PLOT_SETTINGS label
 MEMORY_MODEL, MEMORY_SUBDIVISIONS = "bunny00", 2
 
 
@@ -457,8 +458,10 @@ def _verdict(ok):
     return "pass" if ok else "FAIL"
 
 
-def targets(results, sizes=None, memory=None):
-    """The targets of issue 14 as rows (target, model, measured, bound, verdict)."""
+def targets(results, sizes=None, memory=None, plot_points=None):
+    """The targets of issue 14 as rows (target, model, measured, bound, verdict). plot_points: the
+    --plot runs on bunny00 at 20K, (label, cpu ratio, irregular); the issue lets bunny's count
+    be met by a documented thorough setting (maxTravel 24) when the default meets the time."""
     rows = []
 
     def add(what, model, measured, bound, ok):
@@ -475,6 +478,10 @@ def targets(results, sizes=None, memory=None):
         if base == "bunny00" and res["vertices"] == 20000:
             add("bunny00 count", name, o["irregular"], "<= 48", o["irregular"] <= 48)
             add("bunny00 time", name, "%.2fx" % res["ratio_cpu"], "<= 1.5x peer", res["ratio_cpu"] <= 1.5)
+            for label, ratio, n in plot_points or []:
+                if label == THOROUGH:
+                    add("bunny00 count, thorough (%s)" % label, name, "%d at %.2fx peer" % (n, ratio), "<= 48",
+                        n <= 48)
         if closed and o["chi"] == 2:
             bound = 3.0 if base in THIN else 1.0
             add("genus-0 share" + (" (thin parts: total)" if base in THIN else ""), name, "%.2f%%" % o["share"],
@@ -715,7 +722,7 @@ def cmd_bench(a):
     if plot_info:
         lines += ["", "Plot: %s (%s)." % (plot_info[0], ", ".join("%s: %d at %.2fx" % (label, n, x)
                                                                   for label, x, n in plot_info[1]))]
-    target_rows = targets(results, size_results, memory)
+    target_rows = targets(results, size_results, memory, plot_info[1] if plot_info else None)
     lines += ["", "Targets of issue 14:", ""] + target_rows
     lines += ["", "Total %.0f s." % (time.monotonic() - t0)]
     text = "\n".join(lines) + "\n"

@@ -127,3 +127,21 @@ def test_svg_plot_is_svg_with_every_point():
     texts = [t.text for t in root.iter(ns + "text")]
     assert "peer (5500)" in texts and "default (66)" in texts and "t <&>" in texts
     assert np.isfinite([float(c.get("cy")) for c in root.findall(ns + "circle")]).all()
+
+
+def test_targets_bunny_count_by_the_thorough_setting():
+    """bunny's count may be met by the thorough setting (a --plot run labelled THOROUGH) while the
+    default run is held to the time bound; each row's verdict follows its own number."""
+    ours = dict(loops=0, chi=2, irregular=70, share=0.39, H_source=0.42, H_raw=0.5, below30=0.0, V=17800,
+                interior=70, boundary=0, cpu_runs=[5.0])
+    res = dict(model="bunny00", vertices=20000, ours=ours, peer=dict(boundary=0), ratio_cpu=1.4, ratio_wall=1.3)
+    rows = bench.targets([res], plot_points=[("default", 1.4, 70), ("maxTravel 6", 1.0, 90),
+                                             (bench.THOROUGH, 1.9, 47)])
+    by_name = {r.split(" | ")[0].lstrip("| "): r for r in rows}
+    assert by_name["bunny00 count"].endswith("| FAIL |")
+    assert by_name["bunny00 time"].endswith("| pass |")
+    thorough = by_name["bunny00 count, thorough (%s)" % bench.THOROUGH]
+    assert "47 at 1.90x peer" in thorough and thorough.endswith("| pass |")
+    rows = bench.targets([res], plot_points=[(bench.THOROUGH, 1.9, 49)])
+    assert [r for r in rows if "thorough" in r][0].endswith("| FAIL |")
+    assert not [r for r in bench.targets([res]) if "thorough" in r]
