@@ -143,18 +143,34 @@ class EditJournal {
     m_.vn = c.vn;
   }
 
-  /// Forgets the log up to now (the edits become permanent for this journal).
+  /// Forgets the log up to now (the edits become permanent for this journal). A log that grew
+  /// past kRetainedRecords (one long edit) gives its memory back, so what a journal holds
+  /// between edits is bounded by that, not by the longest edit so far; smaller ones keep their
+  /// capacity for the next edit.
   void Commit() {
-    faceLog_.clear();
-    vertLog_.clear();
-    faceAttrLog_.clear();
-    vertAttrLog_.clear();
-    faceWhole_.clear();
-    vertWhole_.clear();
+    Forget(faceLog_);
+    Forget(vertLog_);
+    Forget(faceAttrLog_);
+    Forget(vertAttrLog_);
+    Forget(faceWhole_);
+    Forget(vertWhole_);
   }
 
   size_t LoggedFaces() const { return faceLog_.size(); }
   size_t LoggedVertices() const { return vertLog_.size(); }
+  /// Bytes the logs hold (their capacities), for memory accounting.
+  size_t Bytes() const {
+    return faceLog_.capacity() * sizeof(FaceRecord) + vertLog_.capacity() * sizeof(VertexRecord) +
+           faceAttrLog_.capacity() * sizeof(FaceAttrRecord) + vertAttrLog_.capacity() * sizeof(VertexAttrRecord) +
+           faceWhole_.capacity() * sizeof(WholeFace) + vertWhole_.capacity() * sizeof(WholeVertex);
+  }
+  /// Records per log kept allocated after a Commit (a few edits' worth).
+  static constexpr size_t kRetainedRecords = 4096;
+  /// The most Bytes() can be right after a Commit.
+  static constexpr size_t RetainedBytesLimit() {
+    return kRetainedRecords * (sizeof(FaceRecord) + sizeof(VertexRecord) + sizeof(FaceAttrRecord) +
+                               sizeof(VertexAttrRecord) + sizeof(WholeFace) + sizeof(WholeVertex));
+  }
 
  private:
   struct FaceRecord {
@@ -194,6 +210,12 @@ class EditJournal {
     size_t stamp, idx;
     VertexType v;
   };
+
+  template <class Log>
+  static void Forget(Log& log) {
+    if (log.capacity() > kRetainedRecords) Log().swap(log);
+    else log.clear();
+  }
 
   /// Grows `vec` back to the size the records since `from` and the checkpoint size `size` need
   /// (never beyond its capacity: no reallocation, pointers stay valid).

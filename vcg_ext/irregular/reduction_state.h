@@ -3,27 +3,93 @@
 // vertex was last edited or failed, the edits the guard undid per vertex, and the one copy of
 // the input that undoes a whole run. Everything here costs O(touched) per edit; only
 // StartCount() and the snapshot are O(mesh), once per run.
+//
+// Memory: the snapshot is compact (mesh_snapshot.h: ~60 bytes per face, ~24 per vertex), and
+// TakeSnapshot gives the mesh's vectors room for the run's new elements (ReserveRoom), so the
+// first split of a run does not double them (std::vector's growth), which on a million-face
+// CMeshO with its optional adjacency costs ~200 MB.
 #pragma once
 
 #include <algorithm>
 #include <map>
 #include <vector>
 
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
+
 #include "atomic_ops.h"
 #include "graph_ops.h"
 #include "journal.h"
+#include "mesh_snapshot.h"
 #include "reduction_options.h"
 #include "relaxation.h"
 
 namespace vcg_ext {
 namespace irregular {
 
+/// Makes the capacity of m.vert and m.face at least their size plus `spareVerts` /
+/// `spareFaces`, fixing every pointer to a moved element (face -> vertex, FF, VF, edge ->
+/// vertex, edge -> face), as vcg's Allocator does when it grows a vector, but to the size asked
+/// instead of double. Nothing else changes (sizes, counts, attributes). O(V + F) when it moves
+/// a vector, O(1) when the room is there already. Meshes with half-edges or tetrahedra are left
+/// alone (their pointers are not fixed here): returns false then.
+/// Gives the pages of freed heap memory back to the system. glibc keeps what many small blocks
+/// freed as resident memory (the edit guard's map of the input's edges, built and dropped by
+/// its constructor, left ~170 MB resident on a million-face input); a whole-mesh allocation
+/// that follows then adds to it instead of reusing it. Elsewhere: nothing. O(heap), once per run.
+inline void ReleaseFreedMemory() {
+#if defined(__GLIBC__)
+  malloc_trim(0);
+#endif
+}
+
+template <class MeshType>
+bool ReserveRoom(MeshType& m, size_t spareVerts, size_t spareFaces) {
+  if (!m.hedge.empty() || !m.tetra.empty()) return false;
+  typedef typename MeshType::VertexType VertexType;
+  typedef typename MeshType::FaceType FaceType;
+  if (!m.vert.empty() && m.vert.capacity() < m.vert.size() + spareVerts) {
+    const VertexType* oldBase = &m.vert[0];
+    const VertexType* oldEnd = oldBase + m.vert.size();
+    m.vert.reserve(m.vert.size() + spareVerts);
+    VertexType* newBase = &m.vert[0];
+    auto fix = [&](VertexType*& p) {
+      if (p && p >= oldBase && p < oldEnd) p = newBase + (p - oldBase);
+    };
+    for (auto& f : m.face)
+      for (int z = 0; z < 3; ++z) fix(f.V(z));
+    for (auto& e : m.edge) fix(e.V(0)), fix(e.V(1));
+  }
+  if (!m.face.empty() && m.face.capacity() < m.face.size() + spareFaces) {
+    const FaceType* oldBase = &m.face[0];
+    const FaceType* oldEnd = oldBase + m.face.size();
+    m.face.reserve(m.face.size() + spareFaces);
+    FaceType* newBase = &m.face[0];
+    auto fix = [&](FaceType*& p) {
+      if (p && p >= oldBase && p < oldEnd) p = newBase + (p - oldBase);
+    };
+    const bool ff = vcg::tri::HasFFAdjacency(m);
+    const bool vf = vcg::tri::HasPerFaceVFAdjacency(m) && vcg::tri::HasPerVertexVFAdjacency(m);
+    for (auto& f : m.face)
+      for (int z = 0; z < 3; ++z) {
+        if (ff) fix(f.FFp(z));
+        if (vf) fix(f.VFp(z));
+      }
+    if (vf)
+      for (auto& v : m.vert) fix(v.VFp());
+    if (vcg::tri::HasEFAdjacency(m))
+      for (auto& e : m.edge) fix(e.EFp());
+  }
+  return true;
+}
+
 template <class MeshType>
 class ReductionState {
  public:
   typedef MeshEditor<MeshType> Editor;
 
-  ReductionState(MeshType& m, Editor& ed, const ReductionOptions& opt) : m_(m), ed_(ed), opt_(opt), snapshot_(m) {}
+  ReductionState(MeshType& m, Editor& ed, const ReductionOptions& opt) : m_(m), ed_(ed), opt_(opt) {}
 
   bool Frozen(int v) const { return v >= 0 && size_t(v) < opt_.frozen.size() && opt_.frozen[size_t(v)]; }
   bool IsInteriorIrregular(int v) { return ed_.IsLive(v) && !ed_.IsBoundary(v) && ed_.Valence(v) != 6; }
@@ -207,19 +273,29 @@ class ReductionState {
   }
 
   // ------------------------------------------------------------ the whole-run undo
-  /// Saves every vertex and face once: O(V + F) memory whatever the number of edits.
+  /// Saves every vertex and face once (mesh_snapshot.h): O(V + F) memory whatever the number
+  /// of edits. First gives the mesh's vectors room for an eighth more elements (at least 4096
+  /// vertices and 8192 faces), the new elements of a run being holes left by its edits, so
+  /// that they do not double when the first edit adds one (ReserveRoom; it may move the
+  /// elements: pointers into the mesh taken before are invalid after).
   void TakeSnapshot() {
-    snapshot_.Commit();
-    mark_ = snapshot_.Mark();
-    for (auto& f : m_.face) snapshot_.SaveFace(&f);
-    for (auto& v : m_.vert) snapshot_.SaveVertex(&v);
+    ReleaseFreedMemory();
+    ReserveRoom(m_, std::max<size_t>(4096, m_.vert.size() / 8), std::max<size_t>(8192, m_.face.size() / 8));
+    snapshot_.Take(m_);
   }
   /// Gives back the mesh as TakeSnapshot saw it, bit for bit, and forgets the snapshot.
   void RestoreSnapshot() {
     ed_.Commit();  // what an interrupted edit logged is overwritten below
-    snapshot_.RollbackTo(mark_);
+    snapshot_.Restore(m_);
+    snapshot_.Clear();
   }
-  void DropSnapshot() { snapshot_.Commit(); }
+  /// Forgets the snapshot and gives its memory back.
+  void DropSnapshot() {
+    snapshot_.Clear();
+    ReleaseFreedMemory();
+  }
+  /// Bytes the snapshot holds (0 when none).
+  size_t SnapshotBytes() const { return snapshot_.Bytes(); }
 
   /// Forgets the edit history (a retry starts from the restored input).
   void Reset() {
@@ -249,8 +325,7 @@ class ReductionState {
   MeshType& m_;
   Editor& ed_;
   const ReductionOptions& opt_;
-  EditJournal<MeshType> snapshot_;  ///< the input, for the whole-run undo
-  typename EditJournal<MeshType>::Checkpoint mark_;
+  CompactSnapshot<MeshType> snapshot_;  ///< the input, for the whole-run undo
   int depth_ = 0;                   ///< guarded edits in progress
   std::vector<char> isIrregular_;   ///< per vertex: counted in irregular_
   int irregular_ = 0;               ///< interior irregular vertices now

@@ -1,0 +1,250 @@
+// Memory of the automatic reduction (issue 14's memory target): the journal gives back what a
+// long edit logged, the whole-run snapshot is compact and gives the mesh back bit for bit,
+// ReserveRoom gives the mesh room without breaking a pointer, and HausdorffPercent's grid of
+// the edited mesh measures what a SurfaceProjector copy measured, to the bit. No test here
+// reads the clock or the resident size: each checks a count or an equality.
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <random>
+
+#include <vcg/complex/algorithms/stat.h>
+#include <vcg/complex/append.h>
+
+#include <vcg_ext/irregular/graph_ops.h>
+#include <vcg_ext/irregular/mesh_checks.h>
+#include <vcg_ext/irregular/mesh_snapshot.h>
+#include <vcg_ext/irregular/quality.h>
+#include <vcg_ext/irregular/reduction_state.h>
+#include <vcg_ext/irregular/remeshing.h>
+
+#include "test_mesh.h"
+#include "test_util.h"
+
+using namespace vcg_ext::irregular;
+using test::TMesh;
+using test::TOMesh;
+
+namespace {
+
+/// Applies up to `n` random flips, splits and collapses (those the editor accepts), committed
+/// one by one. Returns how many were applied.
+template <class MeshT>
+int RandomEdits(MeshT& m, int n, unsigned seed) {
+  MeshEditor<MeshT> ed(m);
+  std::mt19937 rng(seed);
+  int applied = 0;
+  for (int k = 0; k < 20 * n && applied < n; ++k) {
+    const int v = int(rng() % m.vert.size());
+    if (!ed.IsLive(v) || ed.IsBoundary(v)) continue;
+    VertexStar<MeshT> s = ed.Star(v);
+    const int d = s.Valence();
+    const int a = ed.Index(s.neighbors[rng() % size_t(d)]);
+    const int b = ed.Index(s.neighbors[rng() % size_t(d)]);
+    Result r;
+    switch (rng() % 3) {
+      case 0: r = ed.Flip(v, a); break;
+      case 1: r = a != b ? ed.Split(v, a, b) : Result::Fail("same edge"); break;
+      default: r = ed.Collapse(v, a); break;
+    }
+    if (r) ++applied;
+    ed.Commit();
+  }
+  return applied;
+}
+
+/// The old HausdorffPercent: the edited side through a SurfaceProjector copy of the edited mesh.
+template <class MeshT>
+double HausdorffPercentByProjectorCopy(const MeshT& edited, const SurfaceProjector& original) {
+  SurfaceProjector editedSurface(edited);
+  const double ab = OneSidedHausdorff(edited, original);
+  const double ba = OneSidedHausdorff(original.Mesh(), editedSurface);
+  return 100.0 * std::max(ab, ba) / original.Diagonal();
+}
+
+bool Remeshed(TMesh& m, const char* name, int n) {
+  if (!test::LoadCorpus(m, name)) return false;
+  RemeshOptions ro;
+  ro.targetEdgeLength = EdgeLengthForVertexCount(vcg::tri::Stat<TMesh>::ComputeMeshArea(m), n);
+  RemeshIsotropic(m, ro);
+  return true;
+}
+
+}  // namespace
+
+// ------------------------------------------------------------------------------- journal
+
+TEST(MemoryJournal, CommitGivesBackWhatALongEditLoggedAndKeepsASmallLogsRoom) {
+  TMesh m;
+  test::HexPatch(m, 6);
+  EditJournal<TMesh> j(m);
+  // a long edit: far more records than the journal keeps between edits
+  for (size_t k = 0; k < 4 * EditJournal<TMesh>::kRetainedRecords; ++k) {
+    j.SaveFace(&m.face[k % m.face.size()]);
+    j.SaveVertex(&m.vert[k % m.vert.size()]);
+  }
+  const size_t whileLogging = j.Bytes();
+  EXPECT_GT(whileLogging, EditJournal<TMesh>::RetainedBytesLimit());
+  j.Commit();
+  EXPECT_EQ(j.LoggedFaces(), 0u);
+  EXPECT_EQ(j.Bytes(), 0u) << "a long edit's log must be given back at the commit";
+  // short edits keep their room (no allocation per edit), and stay under the bound
+  for (int edit = 0; edit < 100; ++edit) {
+    for (int k = 0; k < 40; ++k) j.SaveFace(&m.face[size_t(k) % m.face.size()]);
+    j.Commit();
+    ASSERT_LE(j.Bytes(), EditJournal<TMesh>::RetainedBytesLimit());
+  }
+  EXPECT_GT(j.Bytes(), 0u);
+}
+
+TEST(MemoryJournal, EditorJournalStaysBoundedOverManyCommittedEdits) {
+  TMesh m;
+  ASSERT_TRUE(Remeshed(m, "bunny00.off", 3000)) << "corpus mesh missing (run scripts/setup.sh)";
+  MeshEditor<TMesh> ed(m);
+  std::mt19937 rng(7);
+  size_t most = 0;
+  int applied = 0;
+  for (int k = 0; k < 4000; ++k) {
+    const int v = int(rng() % m.vert.size());
+    if (!ed.IsLive(v) || ed.IsBoundary(v)) continue;
+    VertexStar<TMesh> s = ed.Star(v);
+    applied += bool(ed.Flip(v, ed.Index(s.neighbors[rng() % s.neighbors.size()])));
+    ed.Commit();
+    most = std::max(most, ed.journal().Bytes());
+  }
+  EXPECT_GT(applied, 500);
+  // what the journal holds does not grow with the number of edits
+  EXPECT_LE(most, EditJournal<TMesh>::RetainedBytesLimit());
+  ASSERT_TRUE(CheckInvariants(m).ok);
+}
+
+// ------------------------------------------------------------------------------- snapshot
+
+TEST(MemorySnapshot, RestoresEveryFieldAfterManyEditsAndIsCompact) {
+  TMesh m;
+  ASSERT_TRUE(Remeshed(m, "bunny00.off", 3000)) << "corpus mesh missing (run scripts/setup.sh)";
+  const test::MeshSnapshot before = test::Snapshot(m);
+  const size_t nv = m.vert.size(), nf = m.face.size();
+  CompactSnapshot<TMesh> snap;
+  snap.Take(m);
+  // float coordinates: at most 64 bytes a face and 28 a vertex (the journal's records: 104 and 48)
+  EXPECT_LE(snap.Bytes(), 64 * nf + 28 * nv);
+  EXPECT_GT(RandomEdits(m, 300, 11), 200);
+  ASSERT_NE(m.vert.size(), nv);  // splits added vertices
+  ASSERT_TRUE(CheckInvariants(m).ok);
+  snap.Restore(m);
+  EXPECT_TRUE(test::Snapshot(m) == before);
+  EXPECT_EQ(m.vert.size(), nv);
+  EXPECT_EQ(m.face.size(), nf);
+  ASSERT_TRUE(CheckInvariants(m).ok);
+  snap.Clear();
+  EXPECT_EQ(snap.Bytes(), 0u);
+  EXPECT_TRUE(snap.Empty());
+}
+
+TEST(MemorySnapshot, RestoresOptionalComponentsAndAttributes) {
+  TMesh base;
+  ASSERT_TRUE(Remeshed(base, "bunny00.off", 2000)) << "corpus mesh missing (run scripts/setup.sh)";
+  TOMesh m;
+  test::CopyAsCMeshO(base, m);
+  // one seamless texture (a planar map of the positions: edits may interpolate it), and
+  // colours that differ face by face
+  for (size_t i = 0; i < m.face.size(); ++i) {
+    m.face[i].C() = vcg::Color4b((unsigned char)(i % 251), 7, 9, 255);
+    for (int z = 0; z < 3; ++z) m.face[i].WT(z) = vcg::TexCoord2f(m.face[i].P(z)[0], m.face[i].P(z)[1]);
+  }
+  for (size_t i = 0; i < m.vert.size(); ++i) m.vert[i].Q() = float(i);
+  const std::vector<double> before = test::OcfSnapshot(m);
+  std::vector<float> quality;
+  for (auto& v : m.vert) quality.push_back(v.Q());
+  std::vector<unsigned> color;
+  for (auto& f : m.face) color.push_back(f.C()[0]);
+  CompactSnapshot<TOMesh> snap;
+  snap.Take(m);
+  EXPECT_GT(RandomEdits(m, 200, 5), 100);
+  // edits overwrite attributes too: scribble on them
+  for (auto& v : m.vert) v.Q() = -1;
+  for (auto& f : m.face) f.C() = vcg::Color4b(0, 0, 0, 0);
+  snap.Restore(m);
+  EXPECT_TRUE(test::OcfSnapshot(m) == before);
+  for (size_t i = 0; i < m.vert.size(); ++i) ASSERT_EQ(m.vert[i].Q(), quality[i]);
+  for (size_t i = 0; i < m.face.size(); ++i) ASSERT_EQ(unsigned(m.face[i].C()[0]), color[i]);
+}
+
+// ------------------------------------------------------------------------------- room
+
+TEST(MemoryReserveRoom, GivesRoomWithoutChangingTheMeshOrBreakingAPointer) {
+  TMesh src, m;
+  ASSERT_TRUE(Remeshed(src, "bunny00.off", 2000)) << "corpus mesh missing (run scripts/setup.sh)";
+  vcg::tri::Append<TMesh, TMesh>::MeshCopy(m, src);  // vectors allocated to their size exactly
+  test::UpdateTopology(m);
+  ASSERT_LT(m.vert.capacity(), m.vert.size() + 100);
+  ASSERT_LT(m.face.capacity(), m.face.size() + 300);
+  const test::MeshSnapshot before = test::Snapshot(m);
+  ASSERT_TRUE(ReserveRoom(m, 100, 300));
+  EXPECT_GE(m.vert.capacity(), m.vert.size() + 100);
+  EXPECT_GE(m.face.capacity(), m.face.size() + 300);
+  EXPECT_LT(m.vert.capacity(), 2 * m.vert.size()) << "room as asked, not a doubling";
+  EXPECT_TRUE(test::Snapshot(m) == before);  // every pointer re-aimed: same indices
+  ASSERT_TRUE(CheckInvariants(m).ok);
+  // the room is used: an edit that adds elements does not move the vectors
+  const TMesh::VertexType* vbase = &m.vert[0];
+  const TMesh::FaceType* fbase = &m.face[0];
+  EXPECT_GT(RandomEdits(m, 50, 3), 20);
+  EXPECT_EQ(&m.vert[0], vbase);
+  EXPECT_EQ(&m.face[0], fbase);
+  ASSERT_TRUE(CheckInvariants(m).ok);
+}
+
+TEST(MemoryReserveRoom, OptionalComponentMeshKeepsItsAdjacency) {
+  TMesh base;
+  ASSERT_TRUE(Remeshed(base, "bunny00.off", 1500)) << "corpus mesh missing (run scripts/setup.sh)";
+  TOMesh m;
+  test::CopyAsCMeshO(base, m);
+  const std::vector<double> before = test::OcfSnapshot(m);
+  ASSERT_TRUE(ReserveRoom(m, m.vert.size() / 8, m.face.size() / 8));
+  EXPECT_GE(m.face.capacity(), m.face.size() + m.face.size() / 8);
+  EXPECT_TRUE(test::OcfSnapshot(m) == before);
+  EXPECT_GT(RandomEdits(m, 50, 9), 20);
+  ASSERT_TRUE(CheckInvariants(m).ok);
+}
+
+// ------------------------------------------------------------------------------- Hausdorff
+
+TEST(MemoryDistanceGrid, SameDistancesAsASurfaceProjectorCopyToTheBit) {
+  TMesh a, b;
+  ASSERT_TRUE(Remeshed(a, "bunny00.off", 3000)) << "corpus mesh missing (run scripts/setup.sh)";
+  ASSERT_TRUE(Remeshed(b, "bunny00.off", 1200));
+  RandomEdits(b, 100, 21);  // holes in the vectors: deleted faces and vertices are skipped
+  SurfaceProjector copy(b);
+  MeshDistanceGrid<TMesh> grid(b);
+  EXPECT_EQ(grid.Diagonal(), copy.Diagonal());
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<float> u(-1, 1);
+  const vcg::Point3f c = vcg::Point3f::Construct(b.bbox.Center());
+  const float diag = copy.Diagonal();
+  int far = 0;
+  for (int k = 0; k < 3000; ++k) {
+    // near the surface, and (every tenth) far from it: outside the box, past the shells
+    const auto& v = a.vert[size_t(k) % a.vert.size()];
+    vcg::Point3f p = vcg::Point3f::Construct(v.cP()) + vcg::Point3f(u(rng), u(rng), u(rng)) * (0.01f * diag);
+    if (k % 10 == 0) p = c + vcg::Point3f(u(rng), u(rng), u(rng)) * (1.5f * diag), ++far;
+    float d = 0;
+    copy.Closest(p, &d);
+    ASSERT_EQ(grid.Distance(p, diag), d) << "point " << k;
+  }
+  EXPECT_EQ(far, 300);
+  // and the whole measure
+  SurfaceProjector original(a);
+  EXPECT_EQ(HausdorffPercent(b, original), HausdorffPercentByProjectorCopy(b, original));
+  EXPECT_EQ(HausdorffPercent(a, SurfaceProjector(b)), HausdorffPercentByProjectorCopy(a, SurfaceProjector(b)));
+}
+
+TEST(MemoryDistanceGrid, IsSmallerThanAProjectorCopy) {
+  TMesh m;
+  ASSERT_TRUE(Remeshed(m, "bunny00.off", 5000)) << "corpus mesh missing (run scripts/setup.sh)";
+  MeshDistanceGrid<TMesh> grid(m);
+  // three indices a face, a float position a vertex, the cells: well under the projector's
+  // copy (48 bytes a face, 28 a vertex) plus its grid (16 cells a face)
+  EXPECT_LE(grid.Bytes(), 64 * m.face.size());
+}

@@ -1,0 +1,199 @@
+// filter_irregular: a compact copy of a whole mesh's state, to give the mesh back bit for bit
+// after a run of many edits (the automatic reduction's whole-run undo, reduction_state.h).
+//
+// It saves what EditJournal (journal.h) saves of an element, and restores it the same way:
+// per vertex its position, VF adjacency and flags (colour, quality and texture coordinate if
+// the mesh has them); per face its vertices, FF and VF adjacency, flags and normal (wedge
+// texture coordinates, colour and quality if the mesh has them); and the vector sizes and the
+// vn / fn counts. The journal, built for a few hundred records per edit, spends 104 bytes per
+// face record (indices as size_t / long, growth by doubling): as an undo point for a
+// million-face input it held ~300 MB. Here indices are 32-bit, the arrays are sized exactly
+// once, and attributes the mesh lacks cost nothing: about 60 bytes per face and 24 per vertex
+// (float coordinates).
+//
+// Preconditions: the mesh has FF and VF adjacency (as every edit of the project needs), fewer
+// than 2^31 elements. Restore() then leaves every saved field as Take() saw it, the vectors at
+// their sizes then, and nothing else changed (elements added since are truncated).
+// Costs: O(V + F) time and memory per Take / Restore, nothing per edit.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <vcg/complex/complex.h>
+
+namespace vcg_ext {
+namespace irregular {
+
+template <class MeshType>
+class CompactSnapshot {
+ public:
+  typedef typename MeshType::FaceType FaceType;
+  typedef typename MeshType::VertexType VertexType;
+  typedef typename MeshType::CoordType CoordType;
+
+  bool Empty() const { return !taken_; }
+
+  /// Saves the whole mesh (replacing any earlier snapshot).
+  void Take(const MeshType& m) {
+    Clear();
+    taken_ = true;
+    nv_ = m.vert.size();
+    nf_ = m.face.size();
+    vn_ = m.vn;
+    fn_ = m.fn;
+    vert_.reserve(nv_);
+    for (const VertexType& v : m.vert) {
+      VertexState s;
+      s.p = v.cP();
+      s.vf = FaceIndex(m, v.cVFp());
+      s.vfi = char(v.cVFi());
+      s.flags = v.cFlags();
+      vert_.push_back(s);
+    }
+    face_.reserve(nf_);
+    for (const FaceType& f : m.face) {
+      FaceState s;
+      for (int z = 0; z < 3; ++z) {
+        s.v[z] = f.cV(z) ? int32_t(vcg::tri::Index(m, f.cV(z))) : -1;
+        s.ff[z] = FaceIndex(m, f.cFFp(z));
+        s.ffi[z] = char(f.cFFi(z));
+        s.vf[z] = FaceIndex(m, f.cVFp(z));
+        s.vfi[z] = char(f.cVFi(z));
+      }
+      s.flags = f.cFlags();
+      s.n = f.cN();
+      face_.push_back(s);
+    }
+    TakeAttributes(m);
+  }
+
+  /// Gives the mesh back as Take() saw it (see the header); the snapshot stays.
+  void Restore(MeshType& m) const {
+    if (!taken_) return;
+    // Elements added since are cut off (truncating never reallocates); a vector that became
+    // shorter (a compaction) grows back first.
+    if (m.vert.size() != nv_) m.vert.resize(nv_);
+    if (m.face.size() != nf_) m.face.resize(nf_);
+    for (size_t i = 0; i < nv_; ++i) {
+      VertexType& v = m.vert[i];
+      const VertexState& s = vert_[i];
+      v.P() = s.p;
+      v.VFp() = Face(m, s.vf);
+      v.VFi() = s.vfi;
+      v.Flags() = s.flags;
+    }
+    for (size_t i = 0; i < nf_; ++i) {
+      FaceType& f = m.face[i];
+      const FaceState& s = face_[i];
+      for (int z = 0; z < 3; ++z) {
+        f.V(z) = s.v[z] < 0 ? nullptr : &m.vert[size_t(s.v[z])];
+        f.FFp(z) = Face(m, s.ff[z]);
+        f.FFi(z) = s.ffi[z];
+        f.VFp(z) = Face(m, s.vf[z]);
+        f.VFi(z) = s.vfi[z];
+      }
+      f.Flags() = s.flags;
+      f.N() = s.n;
+    }
+    RestoreAttributes(m);
+    m.vn = vn_;
+    m.fn = fn_;
+  }
+
+  /// Forgets the snapshot and gives its memory back.
+  void Clear() {
+    taken_ = false;
+    std::vector<VertexState>().swap(vert_);
+    std::vector<FaceState>().swap(face_);
+    std::vector<typename VertexType::ColorType>().swap(vertColor_);
+    std::vector<typename VertexType::QualityType>().swap(vertQuality_);
+    std::vector<typename VertexType::TexCoordType>().swap(vertTex_);
+    std::vector<WedgeTex>().swap(wedgeTex_);
+    std::vector<typename FaceType::ColorType>().swap(faceColor_);
+    std::vector<typename FaceType::QualityType>().swap(faceQuality_);
+  }
+
+  /// Bytes held (capacities), for the memory accounting of tests and benchmarks.
+  size_t Bytes() const {
+    return vert_.capacity() * sizeof(VertexState) + face_.capacity() * sizeof(FaceState) +
+           vertColor_.capacity() * sizeof(vertColor_[0]) + vertQuality_.capacity() * sizeof(vertQuality_[0]) +
+           vertTex_.capacity() * sizeof(vertTex_[0]) + wedgeTex_.capacity() * sizeof(WedgeTex) +
+           faceColor_.capacity() * sizeof(faceColor_[0]) + faceQuality_.capacity() * sizeof(faceQuality_[0]);
+  }
+
+ private:
+  struct VertexState {
+    CoordType p;
+    int32_t vf;
+    int flags;
+    char vfi;
+  };
+  struct FaceState {
+    int32_t v[3], ff[3], vf[3];
+    int flags;
+    typename FaceType::NormalType n;
+    char ffi[3], vfi[3];
+  };
+  struct WedgeTex {
+    typename FaceType::TexCoordType t[3];
+  };
+
+  static int32_t FaceIndex(const MeshType& m, const FaceType* f) {
+    return f ? int32_t(vcg::tri::Index(m, f)) : -1;
+  }
+  static FaceType* Face(MeshType& m, int32_t i) { return i < 0 ? nullptr : &m.face[size_t(i)]; }
+
+  // The attributes the journal keeps, by the same run-time checks (journal.h), each in an
+  // array of its own that stays empty when the mesh lacks it.
+  void TakeAttributes(const MeshType& m) {
+    if (vcg::tri::HasPerVertexColor(m)) {
+      vertColor_.reserve(nv_);
+      for (const VertexType& v : m.vert) vertColor_.push_back(v.cC());
+    }
+    if (vcg::tri::HasPerVertexQuality(m)) {
+      vertQuality_.reserve(nv_);
+      for (const VertexType& v : m.vert) vertQuality_.push_back(v.cQ());
+    }
+    if (vcg::tri::HasPerVertexTexCoord(m)) {
+      vertTex_.reserve(nv_);
+      for (const VertexType& v : m.vert) vertTex_.push_back(v.cT());
+    }
+    if (vcg::tri::HasPerWedgeTexCoord(m)) {
+      wedgeTex_.reserve(nf_);
+      for (const FaceType& f : m.face) wedgeTex_.push_back(WedgeTex{{f.cWT(0), f.cWT(1), f.cWT(2)}});
+    }
+    if (vcg::tri::HasPerFaceColor(m)) {
+      faceColor_.reserve(nf_);
+      for (const FaceType& f : m.face) faceColor_.push_back(f.cC());
+    }
+    if (vcg::tri::HasPerFaceQuality(m)) {
+      faceQuality_.reserve(nf_);
+      for (const FaceType& f : m.face) faceQuality_.push_back(f.cQ());
+    }
+  }
+  void RestoreAttributes(MeshType& m) const {
+    for (size_t i = 0; i < vertColor_.size(); ++i) m.vert[i].C() = vertColor_[i];
+    for (size_t i = 0; i < vertQuality_.size(); ++i) m.vert[i].Q() = vertQuality_[i];
+    for (size_t i = 0; i < vertTex_.size(); ++i) m.vert[i].T() = vertTex_[i];
+    for (size_t i = 0; i < wedgeTex_.size(); ++i)
+      for (int z = 0; z < 3; ++z) m.face[i].WT(z) = wedgeTex_[i].t[z];
+    for (size_t i = 0; i < faceColor_.size(); ++i) m.face[i].C() = faceColor_[i];
+    for (size_t i = 0; i < faceQuality_.size(); ++i) m.face[i].Q() = faceQuality_[i];
+  }
+
+  bool taken_ = false;
+  size_t nv_ = 0, nf_ = 0;
+  int vn_ = 0, fn_ = 0;
+  std::vector<VertexState> vert_;
+  std::vector<FaceState> face_;
+  std::vector<typename VertexType::ColorType> vertColor_;
+  std::vector<typename VertexType::QualityType> vertQuality_;
+  std::vector<typename VertexType::TexCoordType> vertTex_;
+  std::vector<WedgeTex> wedgeTex_;
+  std::vector<typename FaceType::ColorType> faceColor_;
+  std::vector<typename FaceType::QualityType> faceQuality_;
+};
+
+}  // namespace irregular
+}  // namespace vcg_ext
