@@ -2,7 +2,9 @@
 // on a regular torus of about 1M faces with one generated 5-5-7-7 quadruple, a pair is picked
 // and moved step by step; each key press costs Step(k) plus the Directions() of the new state
 // (the arrows the GUI draws next), and each Ctrl+Z an Undo(). Prints median and max per step
-// in ms. The GUI's re-upload of buffers is not part of it.
+// in ms. The GUI's re-upload of buffers is not part of it. Step(k) runs on a known arrow, so it
+// applies that arrow's captured trial (edit_session.h); each of the six trials is also timed
+// alone (the GUI computes them one per idle tick).
 //   usage: bench_edit_session [faces=1000000] [steps=200] [pair=adjacent|apart|same] [relax=1]
 //   adjacent: the generated adjacent 5-7 pair; apart: the v5 of one pair with the v7 of the
 //   other (a non-adjacent 5-7 pair, sec. 7.1.1 pipeline); same: the two v5 (a 5-5 pair).
@@ -96,7 +98,7 @@ int main(int argc, char** argv) {
   std::printf("pair: %d (valence %s) and %d, %s, relax %d\n", s.Lead(), pair == "same" ? "5-5" : "5-7", s.Partner(),
               pair.c_str(), int(relax));
 
-  Stats dirs, step, press, pressCpu, undo;
+  Stats dirs, step, trial, press, pressCpu, undo;
   std::mt19937 rng(1);
   t0 = Clock::now();
   s.Directions();
@@ -120,6 +122,7 @@ int main(int argc, char** argv) {
       auto x = Clock::now();
       s.Direction(d);
       const double t = Ms(x, Clock::now());
+      trial.Add(t);
       if (t > slowest) slowest = t, slowK = d;
     }
     auto c = Clock::now();
@@ -158,7 +161,8 @@ int main(int argc, char** argv) {
     undo.Add(Ms(a, b));
   }
   std::printf("%d steps done, then undone\n", done);
-  step.Print("Step(k)");
+  step.Print("Step(k) (its arrow's trial replayed)");
+  trial.Print("one arrow's trial (Direction(k))");
   dirs.Print("Directions() (six trial steps)");
   press.Print("key press: Step + Directions");
   pressCpu.Print("key press, CPU time of the thread");

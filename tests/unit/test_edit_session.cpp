@@ -592,3 +592,98 @@ TEST(EditSession, DeletingStepKeepsTheMeshCompactAndUndoable) {
   }
   EXPECT_GT(deleting, 0) << "no step deleted elements in 400 random steps";
 }
+
+// Step(k) on a known arrow applies the arrow's captured trial (EditJournal::Replay) instead of
+// running the move again. Two sessions on two copies of the same mesh walk the same random
+// steps, one through the arrows (replayed steps), one calling Step(k) on an unknown state
+// (computed steps): after every step the meshes are bit-identical (positions, flags, every
+// adjacency), the pair and Touched() agree; undoing everything restores the start. Far pairs
+// (the sec. 7.1.1 pipeline) and adjacent ones, deleting steps among them, plain vertices and
+// CMeshO's optional components.
+template <class M, class Snap>
+void ReplayedStepsEqualComputedSteps(M& a, M& b, int lead, int partner, unsigned seed, int steps, Snap snap,
+                                     int* deleting) {
+  const auto start = snap(a);
+  ASSERT_TRUE(snap(b) == start);
+  EditSession<M> sa(a), sb(b);
+  ASSERT_TRUE(sa.PickVertex(lead).ok && sa.PickPartner(partner).ok) << sa.Message();
+  ASSERT_TRUE(sb.PickVertex(lead).ok && sb.PickPartner(partner).ok) << sb.Message();
+  std::mt19937 rng(seed);
+  for (int i = 0; i < steps; ++i) {
+    std::vector<int> ok;
+    for (auto& d : sa.Directions())
+      if (d.accepted) ok.push_back(d.k);
+    ASSERT_TRUE(sa.DirectionsKnown());
+    if (ok.empty()) break;
+    const int k = ok[rng() % ok.size()];
+    const int fn0 = a.fn;
+    ASSERT_TRUE(sa.Step(k).ok) << sa.Message();
+    ASSERT_TRUE(sb.Step(k).ok) << "step " << i << ": replayed but refused when computed: " << sb.Message();
+    *deleting += a.fn < fn0;
+    ASSERT_TRUE(snap(a) == snap(b)) << "step " << i << " direction " << k;
+    EXPECT_EQ(sa.Lead(), sb.Lead());
+    EXPECT_EQ(sa.Partner(), sb.Partner());
+    EXPECT_EQ(sa.Touched(), sb.Touched());
+    EXPECT_EQ(sa.Message(), sb.Message());
+    Result inv = CheckInvariants(a);
+    ASSERT_TRUE(inv.ok) << "step " << i << ": " << inv.reason;
+  }
+  // refused arrows answer from their trial, with the computed step's reason
+  for (auto& d : sa.Directions())
+    if (!d.accepted) {
+      EXPECT_FALSE(sa.Step(d.k).ok);
+      EXPECT_FALSE(sb.Step(d.k).ok);
+      EXPECT_EQ(sa.Message(), sb.Message());
+    }
+  while (sa.Undo()) {
+  }
+  EXPECT_TRUE(snap(a) == start);
+}
+
+TEST(EditSession, ReplayedStepsEqualComputedSteps) {
+  int deleting = 0, cases = 0;
+  for (int round = 0; round < 4; ++round) {
+    QuadMesh qa, qb;
+    MakeQuadruple(qa, 3 + round % 2, false);
+    MakeQuadruple(qb, 3 + round % 2, false);
+    // rounds 0, 1: the adjacent 5-7 pair; 2: a 5-7 pair several edges apart; 3: a 5-5 pair
+    const int partner = round < 2 ? qa.pair7 : round == 2 ? qa.other7 : qa.other5;
+    ReplayedStepsEqualComputedSteps(qa.m, qb.m, qa.pair5, partner, 31u + unsigned(round), 15,
+                                    [](TMesh& m) { return test::Snapshot(m); }, &deleting);
+    ++cases;
+    test::TOMesh oa, ob;
+    test::CopyAsCMeshO(qa.m, oa);
+    test::CopyAsCMeshO(qa.m, ob);  // (qa is back at its start; qb is where the walk left it)
+    ReplayedStepsEqualComputedSteps(oa, ob, qa.pair7, round < 2 ? qa.pair5 : qa.other5, 77u + unsigned(round), 15,
+                                    [](test::TOMesh& m) { return test::OcfSnapshot(m); }, &deleting);
+    ++cases;
+  }
+  std::printf("replayed = computed: %d walks, %d deleting steps\n", cases, deleting);
+  EXPECT_GT(deleting, 0);
+}
+
+// A captured edit applied to a mesh that is not the one it was captured on (other sizes) is
+// refused and changes nothing.
+TEST(EditJournal, ReplayRefusesAnotherState) {
+  QuadMesh q;
+  MakeQuadruple(q, 3, false);
+  MeshEditor<TMesh> ed(q.m);
+  auto cp = ed.Mark();
+  AtomicOperations<TMesh> ops(ed);
+  ASSERT_TRUE(ops.MovePair57(q.pair5, q.pair7, 0));
+  auto replay = ed.journal().CaptureSince(cp);
+  const test::MeshSnapshot moved = test::Snapshot(q.m);
+  ed.RollbackTo(cp);
+  const test::MeshSnapshot start = test::Snapshot(q.m);
+  // applied to the state it came from: the same result, and undone by a rollback
+  auto cp2 = ed.Mark();
+  ASSERT_TRUE(ed.journal().Apply(replay));
+  EXPECT_TRUE(test::Snapshot(q.m) == moved);
+  ed.RollbackTo(cp2);
+  EXPECT_TRUE(test::Snapshot(q.m) == start);
+  // another state (one more vertex): refused, nothing changed
+  vcg::tri::Allocator<TMesh>::AddVertices(q.m, 1);
+  const test::MeshSnapshot other = test::Snapshot(q.m);
+  EXPECT_FALSE(ed.journal().Apply(replay));
+  EXPECT_TRUE(test::Snapshot(q.m) == other);
+}

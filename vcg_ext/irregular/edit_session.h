@@ -36,12 +36,13 @@
 // cheaper and never disagrees. Between two calls of the public API the mesh is always as the
 // last Step / Undo left it. Directions() are cached until the mesh or the pair changes;
 // Direction(k) computes one, for a GUI that spreads the trials over idle ticks.
-// Cost (bench/bench_edit_session.cpp, 1M-face torus): an adjacent 5-7 pair's key press (Step +
-// the six trials of the next Directions) is about 1 ms (median); a pair far apart moves by the
-// sec. 7.1.1 pipeline of composite_ops.h, whose single step costs 1-50 ms (its transport:
-// atomic moves with relaxation and, where the path is blocked, Detour's search up to 5 moves
-// deep; not O(mesh)), so a key press with its six trials costs a median of about 55 ms of CPU
-// for a 5-7 pair several edges apart and 120 ms for a 5-5 pair (up to a few hundred ms).
+// An accepted trial also keeps what it did (EditJournal::Replay, captured before the rollback),
+// so Step(k) on a known arrow applies that instead of running the move again: the step a user
+// sees costs O(touched), and the transport is paid once, in the arrow's trial.
+// Cost (bench/bench_edit_session.cpp, 1M-face torus): see the README's benchmark table. A pair
+// far apart moves by the sec. 7.1.1 pipeline of composite_ops.h, whose trial costs 1-50 ms (its
+// transport: atomic moves with relaxation and, where the path is blocked, Detour's search up
+// to 5 moves deep; not O(mesh)); an adjacent 5-7 pair's trial is a fraction of a millisecond.
 //
 // Direction k is the Move Pair filter's `direction` parameter (filter_composite.cpp passes it
 // unchanged to CompositeOperations::MovePair): for an adjacent 5-7 pair the atomic move k of
@@ -204,8 +205,8 @@ class EditSession {
       d.reason = HasPair() ? Str("direction ", k + 1, " does not exist: the directions are 1 to 6") : NoPair().reason;
       return d;
     }
-    if (dirs_.size() != 6) dirs_.assign(6, EditDirection<CoordType>()), known_.assign(6, 0);
-    if (!known_[size_t(k)]) dirs_[size_t(k)] = Trial(k), known_[size_t(k)] = 1;
+    if (dirs_.size() != 6) dirs_.assign(6, EditDirection<CoordType>()), known_.assign(6, 0), trials_.resize(6);
+    if (!known_[size_t(k)]) dirs_[size_t(k)] = Trial(k, trials_[size_t(k)]), known_[size_t(k)] = 1;
     return dirs_[size_t(k)];
   }
   /// True when Directions() would return without running a trial.
@@ -248,20 +249,38 @@ class EditSession {
   }
   /// One step of the pair in direction k, then local relaxation; one undo entry. The pair
   /// follows the moved vertices. Refused, with the mesh bit-identical, with Message() saying why.
+  ///
+  /// When the arrow of direction k is known (Directions() or Direction(k) ran on this state),
+  /// its trial is not computed again: the trial's refusal is the answer, and an accepted
+  /// trial's captured result (EditJournal::Replay: the final state of every element it
+  /// changed) is applied, O(touched), bit-identical to running the move again on the same
+  /// state (the operations are deterministic; tested). A key press on a drawn arrow therefore
+  /// costs no transport, however far apart the pair is.
   Result Step(int k) {
     if (!HasPair()) return Say(NoPair());
     if (k < 0 || k > 5) return Say(Result::Fail(Str("direction ", k + 1, " does not exist: the directions are 1 to 6")));
+    const bool known = known_.size() == 6 && known_[size_t(k)];
+    if (known && !dirs_[size_t(k)].accepted)
+      return Say(Result::Fail(Str("direction ", k + 1, " refused: ", dirs_[size_t(k)].reason)));
     Entry e = Begin();
     std::vector<int> before = PairRegion(lead_, partner_);
-    CompositeOutcome o = Ops(*e.ed, &original_, CompositeOpt()).MovePair(lead_, partner_, k, 1);
-    if (!o) return Say(Result::Fail(Str("direction ", k + 1, " refused: ", o.result.reason)));
     const int l0 = lead_, p0 = partner_;
+    std::vector<int> compacted;
+    if (known && trials_[size_t(k)].replay.Empty() == false && e.ed->journal().Apply(trials_[size_t(k)].replay)) {
+      lead_ = dirs_[size_t(k)].lead;
+      partner_ = dirs_[size_t(k)].partner;
+      compacted = trials_[size_t(k)].compacted;
+    } else {
+      CompositeOutcome o = Ops(*e.ed, &original_, CompositeOpt()).MovePair(lead_, partner_, k, 1);
+      if (!o) return Say(Result::Fail(Str("direction ", k + 1, " refused: ", o.result.reason)));
+      Compaction c = Compact(*e.ed, e.start);
+      lead_ = c.Where(o.lead);
+      partner_ = c.Where(o.partner);
+      compacted = c.touched;
+    }
     e.action = Action::Step, e.k = k;
-    Compaction c = Compact(*e.ed, e.start);
-    lead_ = c.Where(o.lead);
-    partner_ = c.Where(o.partner);
     std::vector<int> after = PairRegion(lead_, partner_);
-    after.insert(after.end(), c.touched.begin(), c.touched.end());
+    after.insert(after.end(), compacted.begin(), compacted.end());
     Push(std::move(e), before, after);
     return Say(Result::Ok(), Str("moved the pair in direction ", k + 1, ": vertex ", l0, " -> ", lead_, ", vertex ", p0,
                                  " -> ", partner_));
@@ -391,7 +410,10 @@ class EditSession {
   void EnsureGrid() {
     if (!grid_.Built()) grid_.Build(opt_.pickRadius);
   }
-  void Invalidate() { known_.assign(6, 0); }
+  void Invalidate() {
+    known_.assign(6, 0);
+    for (auto& t : trials_) t = TrialResult();  // the captured results belong to the old state
+  }
 
   CompositeOptions CompositeOpt() const {
     CompositeOptions co;
@@ -641,8 +663,15 @@ class EditSession {
     j.RollbackTo(cp);
   }
 
-  /// Direction k tried on the mesh and rolled back (see the header).
-  EditDirection<CoordType> Trial(int k) {
+  /// What an accepted trial did, to do it again in Step without recomputing it.
+  struct TrialResult {
+    typename EditJournal<MeshType>::Replay replay;  ///< the final state of what it changed
+    std::vector<int> compacted;                      ///< Compaction::touched
+  };
+
+  /// Direction k tried on the mesh and rolled back (see the header); an accepted one's result
+  /// is captured into `keep` (its replay).
+  EditDirection<CoordType> Trial(int k, TrialResult& keep) {
     EditDirection<CoordType> d;
     d.k = k;
     d.from = d.to = m_.vert[size_t(lead_)].P();
@@ -657,6 +686,8 @@ class EditSession {
       d.lead = c.Where(o.lead);
       d.partner = c.Where(o.partner);
       d.to = m_.vert[size_t(d.lead)].P();
+      keep.replay = ed.journal().CaptureSince(cp);
+      keep.compacted = c.touched;
       ed.RollbackTo(cp);
     } else {
       d.reason = o.result.reason;
@@ -716,6 +747,7 @@ class EditSession {
   std::vector<int> touched_;
   std::vector<EditDirection<CoordType>> dirs_;
   std::vector<char> known_ = std::vector<char>(6, 0);  ///< dirs_[k] holds the current state's trial
+  std::vector<TrialResult> trials_ = std::vector<TrialResult>(6);  ///< and trials_[k] its result, if accepted
 };
 
 }  // namespace irregular

@@ -37,6 +37,48 @@ class EditJournal {
   typedef typename MeshType::VertexType VertexType;
   typedef typename MeshType::CoordType CoordType;
 
+ private:
+  // The records (declared first: Replay holds them).
+  struct FaceRecord {
+    size_t idx;
+    long v[3], ff[3], vf[3];
+    char ffi[3], vfi[3];
+    int flags;
+    CoordType n;
+  };
+  struct VertexRecord {
+    size_t idx;
+    CoordType p;
+    long vf;
+    int vfi;
+    int flags;
+  };
+
+  struct FaceAttrRecord {
+    size_t idx;
+    typename FaceType::TexCoordType wt[3];
+    typename FaceType::ColorType c;
+    typename FaceType::QualityType q;
+  };
+  struct VertexAttrRecord {
+    size_t idx;
+    typename VertexType::ColorType c;
+    typename VertexType::QualityType q;
+    typename VertexType::TexCoordType t;
+  };
+  /// A whole element, saved when the regular log held `stamp` records (it is newer than
+  /// those and older than the following ones).
+  struct WholeFace {
+    size_t stamp, idx;
+    FaceType f;
+  };
+  struct WholeVertex {
+    size_t stamp, idx;
+    VertexType v;
+  };
+
+ public:
+
   /// A point in the journal to roll back to.
   struct Checkpoint {
     size_t faceLog = 0, vertLog = 0, faces = 0, verts = 0;
@@ -65,32 +107,15 @@ class EditJournal {
   /// Saves face f (vertex refs, FF, VF, flags, normal; wedge texture coordinates, colour and
   /// quality if the mesh has them) before it is changed.
   void SaveFace(FaceType* f) {
-    FaceRecord r;
-    r.idx = Idx(f);
-    for (int z = 0; z < 3; ++z) {
-      r.v[z] = f->V(z) ? long(vcg::tri::Index(m_, f->V(z))) : -1;
-      r.ff[z] = f->cFFp(z) ? long(vcg::tri::Index(m_, f->cFFp(z))) : -1;
-      r.ffi[z] = f->cFFi(z);
-      r.vf[z] = f->cVFp(z) ? long(vcg::tri::Index(m_, f->cVFp(z))) : -1;
-      r.vfi[z] = f->cVFi(z);
-    }
-    r.flags = f->Flags();
-    r.n = f->N();
-    faceLog_.push_back(r);
-    SaveFaceAttributes(r.idx, *f);
+    faceLog_.push_back(RecordOf(f));
+    SaveFaceAttributes(faceLog_.back().idx, *f);
   }
 
   /// Saves vertex v (position, VF, flags; colour, quality and texture coordinate if the mesh
   /// has them) before it is changed.
   void SaveVertex(VertexType* v) {
-    VertexRecord r;
-    r.idx = vcg::tri::Index(m_, v);
-    r.p = v->P();
-    r.vf = v->cVFp() ? long(vcg::tri::Index(m_, v->cVFp())) : -1;
-    r.vfi = v->cVFi();
-    r.flags = v->Flags();
-    vertLog_.push_back(r);
-    SaveVertexAttributes(r.idx, *v);
+    vertLog_.push_back(RecordOf(v));
+    SaveVertexAttributes(vertLog_.back().idx, *v);
   }
 
   /// Saves face f like SaveFace, plus a copy of the whole element (every static component,
@@ -117,6 +142,74 @@ class EditJournal {
     std::vector<size_t> out;
     for (size_t k = c.vertLog; k < vertLog_.size(); ++k) out.push_back(vertLog_[k].idx);
     return out;
+  }
+
+  /// What an edit made of the mesh since a checkpoint: the final state of every element it
+  /// saved or created, and the final sizes. Captured after a trial (edit_session.h: the dry run
+  /// of an arrow) and applied later to the same state, it does that edit again without
+  /// recomputing it. Only valid on a mesh bit-identical to the one at the checkpoint.
+  struct Replay {
+    size_t faces0 = 0, verts0 = 0;  ///< the vectors' sizes at the checkpoint (checked by Apply)
+    size_t faces = 0, verts = 0;    ///< and after the edit
+    int fn = 0, vn = 0;
+    std::vector<FaceRecord> faceRec;
+    std::vector<WholeFace> faceWhole;
+    std::vector<FaceAttrRecord> faceAttr;
+    std::vector<VertexRecord> vertRec;
+    std::vector<WholeVertex> vertWhole;
+    std::vector<VertexAttrRecord> vertAttr;
+    bool Empty() const { return faceRec.empty() && vertRec.empty() && faces == faces0 && verts == verts0; }
+  };
+
+  /// The state now of every element saved since c or created since c (those still inside the
+  /// vectors), and the sizes. O(logged).
+  Replay CaptureSince(const Checkpoint& c) const {
+    Replay r;
+    r.faces0 = c.faces, r.verts0 = c.verts;
+    r.faces = m_.face.size(), r.verts = m_.vert.size();
+    r.fn = m_.fn, r.vn = m_.vn;
+    for (size_t i : Changed(FacesSavedSince(c), c.faces, m_.face.size())) {
+      const FaceType* f = &m_.face[i];
+      r.faceRec.push_back(RecordOf(f));
+      r.faceWhole.push_back(WholeFace{0, i, *f});
+      if (HasFaceAttributes()) r.faceAttr.push_back(AttributesOf(i, *f));
+    }
+    for (size_t i : Changed(VerticesSavedSince(c), c.verts, m_.vert.size())) {
+      const VertexType* v = &m_.vert[i];
+      r.vertRec.push_back(RecordOf(v));
+      r.vertWhole.push_back(WholeVertex{0, i, *v});
+      if (HasVertexAttributes()) r.vertAttr.push_back(AttributesOf(i, *v));
+    }
+    return r;
+  }
+
+  /// Does the captured edit again, journaled like any edit (RollbackTo a mark taken before
+  /// undoes it). Precondition: the mesh is bit-identical to the one the capture started from
+  /// (sizes checked: false, and nothing done, when they differ), and the vectors' capacity
+  /// holds the final sizes (growing never reallocates). O(captured).
+  bool Apply(const Replay& r) {
+    if (m_.face.size() != r.faces0 || m_.vert.size() != r.verts0) return false;
+    assert(r.faces <= m_.face.capacity() && r.verts <= m_.vert.capacity());
+    // save what is overwritten and what is truncated, for the rollback
+    for (const auto& w : r.faceWhole)
+      if (w.idx < m_.face.size()) SaveWholeFace(&m_.face[w.idx]);
+    for (size_t i = r.faces; i < m_.face.size(); ++i) SaveWholeFace(&m_.face[i]);
+    for (const auto& w : r.vertWhole)
+      if (w.idx < m_.vert.size()) SaveWholeVertex(&m_.vert[w.idx]);
+    for (size_t i = r.verts; i < m_.vert.size(); ++i) SaveWholeVertex(&m_.vert[i]);
+    m_.face.resize(r.faces);
+    m_.vert.resize(r.verts);
+    // whole copies first, then the records (the adjacency, which may be optional components
+    // outside the element's bytes), then the attributes: the order of RollbackTo
+    for (const auto& w : r.faceWhole) RestoreWhole(w);
+    for (const auto& w : r.vertWhole) RestoreWhole(w);
+    for (const auto& x : r.faceRec) Restore(x);
+    for (const auto& x : r.vertRec) Restore(x);
+    for (const auto& x : r.faceAttr) Restore(x);
+    for (const auto& x : r.vertAttr) Restore(x);
+    m_.fn = r.fn;
+    m_.vn = r.vn;
+    return true;
   }
 
   /// Restores the mesh to checkpoint c and forgets everything logged after it.
@@ -173,44 +266,6 @@ class EditJournal {
   }
 
  private:
-  struct FaceRecord {
-    size_t idx;
-    long v[3], ff[3], vf[3];
-    char ffi[3], vfi[3];
-    int flags;
-    CoordType n;
-  };
-  struct VertexRecord {
-    size_t idx;
-    CoordType p;
-    long vf;
-    int vfi;
-    int flags;
-  };
-
-  struct FaceAttrRecord {
-    size_t idx;
-    typename FaceType::TexCoordType wt[3];
-    typename FaceType::ColorType c;
-    typename FaceType::QualityType q;
-  };
-  struct VertexAttrRecord {
-    size_t idx;
-    typename VertexType::ColorType c;
-    typename VertexType::QualityType q;
-    typename VertexType::TexCoordType t;
-  };
-  /// A whole element, saved when the regular log held `stamp` records (it is newer than
-  /// those and older than the following ones).
-  struct WholeFace {
-    size_t stamp, idx;
-    FaceType f;
-  };
-  struct WholeVertex {
-    size_t stamp, idx;
-    VertexType v;
-  };
-
   template <class Log>
   static void Forget(Log& log) {
     if (log.capacity() > kRetainedRecords) Log().swap(log);
@@ -250,6 +305,39 @@ class EditJournal {
     std::memcpy(static_cast<void*>(&to), static_cast<const void*>(&from), sizeof(T));
   }
 
+  /// The indices in `saved` (with repetitions) and in [from, size), below `size`, sorted.
+  static std::vector<size_t> Changed(std::vector<size_t> saved, size_t from, size_t size) {
+    for (size_t i = from; i < size; ++i) saved.push_back(i);
+    saved.erase(std::remove_if(saved.begin(), saved.end(), [size](size_t i) { return i >= size; }), saved.end());
+    std::sort(saved.begin(), saved.end());
+    saved.erase(std::unique(saved.begin(), saved.end()), saved.end());
+    return saved;
+  }
+
+  FaceRecord RecordOf(const FaceType* f) const {
+    FaceRecord r;
+    r.idx = Idx(f);
+    for (int z = 0; z < 3; ++z) {
+      r.v[z] = f->cV(z) ? long(vcg::tri::Index(m_, f->cV(z))) : -1;
+      r.ff[z] = f->cFFp(z) ? long(vcg::tri::Index(m_, f->cFFp(z))) : -1;
+      r.ffi[z] = f->cFFi(z);
+      r.vf[z] = f->cVFp(z) ? long(vcg::tri::Index(m_, f->cVFp(z))) : -1;
+      r.vfi[z] = f->cVFi(z);
+    }
+    r.flags = f->cFlags();
+    r.n = f->cN();
+    return r;
+  }
+  VertexRecord RecordOf(const VertexType* v) const {
+    VertexRecord r;
+    r.idx = vcg::tri::Index(m_, v);
+    r.p = v->cP();
+    r.vf = v->cVFp() ? long(vcg::tri::Index(m_, v->cVFp())) : -1;
+    r.vfi = v->cVFi();
+    r.flags = v->cFlags();
+    return r;
+  }
+
   bool WedgeTex() const { return vcg::tri::HasPerWedgeTexCoord(m_); }
   bool FaceColor() const { return vcg::tri::HasPerFaceColor(m_); }
   bool FaceQuality() const { return vcg::tri::HasPerFaceQuality(m_); }
@@ -257,24 +345,30 @@ class EditJournal {
   bool VertQuality() const { return vcg::tri::HasPerVertexQuality(m_); }
   bool VertTex() const { return vcg::tri::HasPerVertexTexCoord(m_); }
 
-  void SaveFaceAttributes(size_t idx, FaceType& f) {
-    if (!WedgeTex() && !FaceColor() && !FaceQuality()) return;
+  bool HasFaceAttributes() const { return WedgeTex() || FaceColor() || FaceQuality(); }
+  bool HasVertexAttributes() const { return VertColor() || VertQuality() || VertTex(); }
+  FaceAttrRecord AttributesOf(size_t idx, const FaceType& f) const {
     FaceAttrRecord r{};
     r.idx = idx;
     if (WedgeTex())
-      for (int z = 0; z < 3; ++z) r.wt[z] = f.WT(z);
-    if (FaceColor()) r.c = f.C();
-    if (FaceQuality()) r.q = f.Q();
-    faceAttrLog_.push_back(r);
+      for (int z = 0; z < 3; ++z) r.wt[z] = f.cWT(z);
+    if (FaceColor()) r.c = f.cC();
+    if (FaceQuality()) r.q = f.cQ();
+    return r;
   }
-  void SaveVertexAttributes(size_t idx, VertexType& v) {
-    if (!VertColor() && !VertQuality() && !VertTex()) return;
+  VertexAttrRecord AttributesOf(size_t idx, const VertexType& v) const {
     VertexAttrRecord r{};
     r.idx = idx;
-    if (VertColor()) r.c = v.C();
-    if (VertQuality()) r.q = v.Q();
-    if (VertTex()) r.t = v.T();
-    vertAttrLog_.push_back(r);
+    if (VertColor()) r.c = v.cC();
+    if (VertQuality()) r.q = v.cQ();
+    if (VertTex()) r.t = v.cT();
+    return r;
+  }
+  void SaveFaceAttributes(size_t idx, FaceType& f) {
+    if (HasFaceAttributes()) faceAttrLog_.push_back(AttributesOf(idx, f));
+  }
+  void SaveVertexAttributes(size_t idx, VertexType& v) {
+    if (HasVertexAttributes()) vertAttrLog_.push_back(AttributesOf(idx, v));
   }
   void Restore(const FaceAttrRecord& r) {
     FaceType& f = m_.face[r.idx];
