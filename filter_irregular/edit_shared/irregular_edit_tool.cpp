@@ -14,7 +14,9 @@
 #include <QFontMetrics>
 #include <QKeyEvent>
 #include <QMouseEvent>
+#include <QElapsedTimer>
 #include <QPainter>
+#include <QTimer>
 
 #include <vcg/complex/algorithms/update/bounding.h>
 #include <vcg/complex/algorithms/update/normal.h>
@@ -39,6 +41,8 @@ const char* kTool = "Irregular Vertices: Edit";
 const double kDragPixels = 12.0;
 /// Arrows are drawn at least this long (pixels) so that short edges stay readable.
 const double kMinArrowPixels = 40.0;
+/// The arrows' trials a frame may run (ms of wall time; at least one trial per frame).
+const qint64 kArrowBudgetMs = 10;
 }  // namespace
 
 struct IrregularEditTool::View {
@@ -90,8 +94,9 @@ bool IrregularEditTool::Start(MeshModel& m, GLArea* gla, MLSceneGLSharedDataCont
   if (selected == 2) {
     irr::Result r = session_->PickFromSelection();
     Report(bool(r), r ? "pair picked from the selection: vertices " + std::to_string(session_->Lead()) + " and " +
-                            std::to_string(session_->Partner()) + "; " + AcceptedText()
+                            std::to_string(session_->Partner())
                       : "the selection is not a pair: " + r.reason);
+    arrowsAnnounced_ = false;
   } else {
     message_ = "click near an irregular vertex to pick a pair";
   }
@@ -257,12 +262,36 @@ void IrregularEditTool::DoStep(int k, MeshModel& m, GLArea* gla) {
   const std::string dir = "step in direction " + std::to_string(k + 1);
   if (r) {
     const std::string msg = session_->Message();
-    Report(true, dir + " done: " + msg + "; " + AcceptedText());
+    Report(true, dir + " done: " + msg);
+    arrowsAnnounced_ = false;
     MeshChanged(m, gla);
   } else {  // EditSession's reason may name the direction already
     const std::string again = "direction " + std::to_string(k + 1) + " refused: ";
     const bool named = r.reason.compare(0, again.size(), again) == 0;
     Report(false, dir + " refused: " + (named ? r.reason.substr(again.size()) : r.reason));
+  }
+}
+
+void IrregularEditTool::ComputeArrows(GLArea* gla) {
+  if (!session_->HasPair()) return;
+  if (!session_->DirectionsKnown()) {
+    // One trial at least, then more while the frame's budget lasts; the rest in the next
+    // frames, so a pair far apart (a trial of up to tens of ms) never freezes the viewer.
+    QElapsedTimer clock;
+    clock.start();
+    int ran = 0;
+    for (int k = 0; k < 6; ++k)
+      if (!session_->DirectionKnown(k) && (ran == 0 || clock.elapsed() < kArrowBudgetMs)) {
+        session_->Direction(k);
+        ++ran;
+      }
+    if (!session_->DirectionsKnown() && gla) QTimer::singleShot(0, gla, [gla]() { gla->update(); });
+  }
+  if (session_->DirectionsKnown() && !arrowsAnnounced_) {
+    arrowsAnnounced_ = true;
+    const std::string a = AcceptedText();
+    if (!messageIsError_) message_ += "; " + a;
+    pendingLog_.push_back(std::string(kTool) + ": arrows: " + a);
   }
 }
 
@@ -334,14 +363,16 @@ void IrregularEditTool::KeyPress(QKeyEvent* e, MeshModel& m, GLArea* gla) {
     const bool redone = session_->Redo();
     const std::string msg = redone ? "redone: " + session_->Message()
                                    : session_->Message().empty() ? std::string("nothing to redo") : session_->Message();
-    Report(redone, redone && session_->HasPair() ? msg + "; " + AcceptedText() : msg);
+    Report(redone, msg);
+    arrowsAnnounced_ = arrowsAnnounced_ && !redone;
     if (redone) MeshChanged(m, gla);
   } else if (key == Qt::Key_Z && ctrl) {
     e->accept();
     const bool undone = session_->Undo();
     const std::string msg = session_->Message().empty() ? std::string(undone ? "undone" : "nothing to undo")
                                                         : session_->Message();
-    Report(undone, undone && session_->HasPair() ? msg + "; " + AcceptedText() : msg);
+    Report(undone, msg);
+    arrowsAnnounced_ = arrowsAnnounced_ && !undone;
     if (undone) MeshChanged(m, gla);
   } else if (key >= Qt::Key_1 && key <= Qt::Key_6) {
     e->accept();
@@ -363,6 +394,7 @@ void IrregularEditTool::KeyPress(QKeyEvent* e, MeshModel& m, GLArea* gla) {
     irr::Result r = triple ? session_->CancelTriple() : session_->CancelQuadruple();
     const std::string what = triple ? "triple" : "quadruple";
     Report(bool(r), r ? what + " cancelled" : what + " not cancelled: " + r.reason);
+    arrowsAnnounced_ = arrowsAnnounced_ && !r;
     if (r) MeshChanged(m, gla);
   } else {
     return;
@@ -400,13 +432,14 @@ void IrregularEditTool::Decorate(MeshModel& m, GLArea* gla, QPainter* p) {
         if (best < 0 || d < bestD) best = int(i), bestD = d;
       }
       irr::Result r = session_->PickPartner(best);
-      Report(bool(r), r ? "partner " + std::to_string(best) + " picked; " + AcceptedText()
-                        : "partner not picked: " + r.reason);
+      Report(bool(r), r ? "partner " + std::to_string(best) + " picked" : "partner not picked: " + r.reason);
+      arrowsAnnounced_ = arrowsAnnounced_ && !r;
     } else {
       irr::Result r = session_->PickAt(surface);
       Report(bool(r), r ? "pair picked: vertices " + std::to_string(session_->Lead()) + " and " +
-                              std::to_string(session_->Partner()) + "; " + AcceptedText()
+                              std::to_string(session_->Partner())
                         : "no pair picked: " + r.reason);
+      arrowsAnnounced_ = arrowsAnnounced_ && !r;
     }
   }
 
@@ -448,9 +481,12 @@ void IrregularEditTool::Decorate(MeshModel& m, GLArea* gla, QPainter* p) {
   glPopAttrib();
   glPopMatrix();
 
-  // the accepted directions, as arrows in screen space with their key numbers
+  // the accepted directions, as arrows in screen space with their key numbers: those whose
+  // trial has run (ComputeArrows runs the others over the next frames)
+  ComputeArrows(gla);
   std::vector<irr::EditDirection<CMeshO::CoordType>> dirs;
-  if (session_->HasPair()) dirs = session_->Directions();
+  for (int k = 0; k < 6; ++k)
+    if (session_->DirectionKnown(k)) dirs.push_back(session_->Direction(k));
   struct Arrow {
     double x0, y0, x1, y1;
     int k;

@@ -78,7 +78,12 @@ class IrregularEditTool {
   void StepToward(double sx, double sy, MeshModel& m, GLArea* gla);
   /// Step(k), its message, and MeshChanged when done.
   void DoStep(int k, MeshModel& m, GLArea* gla);
+  /// Runs the trials of the arrows not known yet (EditSession::Direction), for at most about
+  /// kArrowBudgetMs per frame and at least one, and asks for another frame while some are
+  /// missing; once all six are known, appends "accepted next: ..." to the message and logs it.
+  void ComputeArrows(GLArea* gla);
   /// "accepted next: 1 3 4 6": the keys whose step the dry run accepts (the drawn arrows).
+  /// Precondition: all six directions known.
   std::string AcceptedText();
   bool Project(const CMeshO::CoordType& p, double& x, double& y) const;
 
@@ -91,6 +96,7 @@ class IrregularEditTool {
   std::string message_;                   ///< drawn in the viewport
   std::vector<std::string> pendingLog_;   ///< lines for MeshLab's log, written by Decorate
   bool messageIsError_ = false;
+  bool arrowsAnnounced_ = false;  ///< the current state's "accepted next" line was logged
   // mouse: a click (press + release without moving) picks, a drag steps toward the cursor
   bool pressed_ = false, dragging_ = false, pickPending_ = false, pickPartner_ = false;
   QPoint pressAt_, pickAt_;  ///< GL window coordinates (y up, device pixels)

@@ -61,6 +61,15 @@ def tool_lines(g):
     return [ln.strip() for ln in text.splitlines() if TOOL + ":" in ln]
 
 
+ARROWS = ": arrows: accepted next: "
+
+
+def answers(lines):
+    """The tool's answers to requests: its lines without the "arrows: accepted next" ones,
+    which it logs once the six arrows of a new state are computed (over one or more frames)."""
+    return [ln for ln in lines if ARROWS not in ln]
+
+
 def session(a, a11y, proc):
     g = open_main(a, a11y, proc)
     if a.rotate or a.zoom:
@@ -115,7 +124,7 @@ def session(a, a11y, proc):
 
         def answered():
             g.check_alive(what)
-            new = tool_lines(g)[before:]
+            new = answers(tool_lines(g)[before:])
             if not new:  # the first line after the key press says done or why not
                 return None
             if not ok(new[0]):
@@ -140,9 +149,14 @@ def session(a, a11y, proc):
 
     # 4. a direction the tool does not draw (its log lists the accepted ones after each step)
     # must be refused with a reason and change nothing (the export is checked afterwards)
-    m = re.search(r"accepted next: ([0-9 ]+|none)", tool_lines(g)[-1])
+    def arrows_line():
+        g.check_alive("the arrows after the redo")
+        last = tool_lines(g)[-1]
+        return last if ARROWS in last else None
+    arrows = wait_for("the line '%s...' after the redo" % ARROWS.strip(), arrows_line, 20)
+    m = re.search(r"accepted next: ([0-9 ]+|none)", arrows)
     if not m:
-        raise GuiError("the last step's log line does not list the accepted directions: '%s'" % tool_lines(g)[-1])
+        raise GuiError("the arrows' log line does not list the accepted directions: '%s'" % arrows)
     accepted = m.group(1).split() if m.group(1) != "none" else []
     refused = [k for k in "123456" if k not in accepted]
     log("accepted directions %s, drawn as arrows; trying a refused one: %s" % (accepted, refused[:1]))
@@ -208,7 +222,7 @@ def session(a, a11y, proc):
 
     def click_answer():
         g.check_alive("the click on the mesh")
-        new = tool_lines(g)[before:]
+        new = answers(tool_lines(g)[before:])
         return new[0] if new else None
     line = wait_for("the tool's answer to a click on the mesh", click_answer, 10)
     log("click on the mesh: %s" % line)

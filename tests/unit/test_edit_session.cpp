@@ -687,3 +687,28 @@ TEST(EditJournal, ReplayRefusesAnotherState) {
   EXPECT_FALSE(ed.journal().Apply(replay));
   EXPECT_TRUE(test::Snapshot(q.m) == other);
 }
+
+// The GUI computes the arrows one trial at a time over idle frames (DirectionKnown tells it
+// which are missing); a key pressed before its arrow is known runs the move itself, with the
+// same result as through the arrow.
+TEST(EditSession, DirectionsAreKnownOneAtATime) {
+  QuadMesh q;
+  MakeQuadruple(q, 4, false);
+  EditSession<TMesh> s(q.m);
+  for (int k = 0; k < 6; ++k) EXPECT_FALSE(s.DirectionKnown(k));  // no pair yet
+  ASSERT_TRUE(s.PickVertex(q.pair5).ok && s.PickPartner(q.other7).ok) << s.Message();
+  for (int k = 0; k < 6; ++k) EXPECT_FALSE(s.DirectionKnown(k));
+  s.Direction(2);
+  EXPECT_TRUE(s.DirectionKnown(2));
+  EXPECT_FALSE(s.DirectionKnown(1));
+  EXPECT_FALSE(s.DirectionsKnown());
+  EXPECT_FALSE(s.DirectionKnown(6));
+  for (int k = 0; k < 6; ++k) s.Direction(k);
+  EXPECT_TRUE(s.DirectionsKnown());
+  int accepted = -1;
+  for (auto& d : s.Directions())
+    if (d.accepted) accepted = d.k;
+  ASSERT_GE(accepted, 0);
+  ASSERT_TRUE(s.Step(accepted).ok) << s.Message();
+  for (int k = 0; k < 6; ++k) EXPECT_FALSE(s.DirectionKnown(k)) << "the arrows of the old state are forgotten";
+}

@@ -209,6 +209,10 @@ class EditSession {
     if (!known_[size_t(k)]) dirs_[size_t(k)] = Trial(k, trials_[size_t(k)]), known_[size_t(k)] = 1;
     return dirs_[size_t(k)];
   }
+  /// True when direction k's trial ran on the current state (Direction(k) returns at once).
+  bool DirectionKnown(int k) const {
+    return HasPair() && k >= 0 && k < 6 && known_.size() == 6 && known_[size_t(k)] != 0;
+  }
   /// True when Directions() would return without running a trial.
   bool DirectionsKnown() const { return HasPair() && known_.size() == 6 && std::count(known_.begin(), known_.end(), 1) == 6; }
   /// The accepted direction whose drawn arrow (projected by `project`) is closest in angle to
