@@ -132,6 +132,33 @@ TEST(Relaxation, CreaseVerticesStayFixed) {
     if (crease[i]) EXPECT_EQ(m.vert[i].P(), before[i]);
 }
 
+// The per-vertex form (RelaxOptions::creaseFixedDeg, O(valence) per vertex, what the automatic
+// reduction uses after every edit): exactly the vertices CreaseVertices flags stay, bit for bit,
+// and the others are free (many move).
+TEST(Relaxation, CreaseFixedDegKeepsExactlyTheCreaseVertices) {
+  TMesh m;
+  ASSERT_TRUE(test::LoadCorpus(m, "fandisk.off")) << "corpus mesh missing (run scripts/setup.sh)";
+  SurfaceProjector original(m);
+  const std::vector<char> crease = CreaseVertices(m, 60.0);
+  std::vector<vcg::Point3f> before;
+  for (auto& v : m.vert) before.push_back(v.P());
+  RelaxOptions opt;
+  opt.creaseFixedDeg = 60;
+  opt.iterations = 3;  // the vertices on creases are found before the first sweep
+  LocalRelax(m, AllVertices(m), &original, opt);
+  int fixed = 0, moved = 0;
+  for (size_t i = 0; i < m.vert.size(); ++i) {
+    if (crease[i]) {
+      EXPECT_EQ(m.vert[i].P(), before[i]) << "crease vertex " << i;
+      ++fixed;
+    } else {
+      moved += !(m.vert[i].P() == before[i]);
+    }
+  }
+  EXPECT_GT(fixed, 200);
+  EXPECT_GT(moved, int(m.vert.size()) / 4);
+}
+
 TEST(Quality, MeasuresOnEquilateralLattice) {
   TMesh m;
   test::HexPatch(m, 3);

@@ -55,7 +55,7 @@ class AutomaticReduction {
         original_(original),
         opt_(std::move(opt)),
         ed_(m),
-        comp_(ed_, &original, Quiet()),
+        comp_(ed_, &original, Quiet(opt_.creaseDeg)),
         state_(m, ed_, opt_),
         guard_(m, original, opt_, ed_, state_),
         cancel_(m, ed_, comp_, guard_, state_),
@@ -212,9 +212,10 @@ class AutomaticReduction {
     state_.Failed(v);
   }
 
-  static CompositeOptions Quiet() {
+  static CompositeOptions Quiet(double creaseDeg) {
     CompositeOptions o;
     o.relax = true;
+    o.creaseDeg = creaseDeg;
     return o;
   }
 
@@ -317,6 +318,9 @@ class AutomaticReduction {
     std::vector<int> all;
     for (size_t i = 0; i < m_.vert.size(); ++i)
       if (ed_.IsLive(int(i)) && !state_.Frozen(int(i))) all.push_back(int(i));
+    // relaxing the vertices on creases would round them (issue 14: creases within 0.1%): they
+    // stay, in the global solve and in the local sweeps
+    const std::vector<char> crease = CreaseVertices(m_, opt_.creaseDeg);
     if (opt_.finalRelax == RelaxMode::Global) {
       const double before = MeasureShape(m_).minAngleDeg;
       std::vector<CoordType> saved;
@@ -324,7 +328,7 @@ class AutomaticReduction {
       RelaxOptions go;
       go.mode = RelaxMode::Global;
       go.iterations = opt_.globalRelaxRounds;
-      irregular::Relax(m_, all, &original_, go);
+      irregular::Relax(m_, all, &original_, go, &crease);
       if (MeasureShape(m_).minAngleDeg < before) {
         for (size_t i = 0; i < all.size(); ++i) ed_.V(all[i])->P() = saved[i];
         globalKept_ = false;
@@ -335,6 +339,7 @@ class AutomaticReduction {
     const double angleBeforeSweeps = MeasureShape(m_).minAngleDeg;
     RelaxOptions lo;
     lo.iterations = opt_.finalLocalSweeps;
+    lo.creaseFixedDeg = opt_.creaseDeg;
     LocalRelax(m_, all, &original_, lo);
     for (auto& f : m_.face)
       if (!f.IsD()) f.N() = vcg::TriangleNormal(f).Normalize();

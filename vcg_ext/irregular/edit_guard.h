@@ -5,7 +5,9 @@
 //     cancelled without squeezing the triangles there);
 //   * the faces stay within the Hausdorff budget of the input surface, both ways
 //     (DeviationAround: the edited faces to the input, and the input's samples (sampling:
-//     its sharp edges, optionally its whole surface thinned) to the edited faces);
+//     its sharp edges, optionally its whole surface thinned) to the edited faces); the
+//     samples on creases (edges sharper than opt.creaseDeg) are held to the much smaller
+//     crease budget, so that an edit cannot cut a crease;
 //   * no protected (frozen) vertex sees one of its faces change.
 // GuardedEdit is the scope of one edit: it remembers the journal checkpoint and the angle
 // before, and Accept() keeps or rolls back. Costs O(the edit's 2-ring) per check.
@@ -49,6 +51,7 @@ class EditGuard {
             ReductionState<MeshType>& state)
       : m_(m), original_(original), opt_(opt), ed_(ed), state_(state) {
     budget_ = 0.9 * opt_.hausdorffBudgetPercent / 100.0 * double(original.Diagonal());
+    creaseBudget_ = opt_.creaseBudgetPercent / 100.0 * double(original.Diagonal());
     BuildInputSamples(samplesPerEdge_ = opt_.hausdorffSamplesPerEdge);
   }
 
@@ -79,7 +82,8 @@ class EditGuard {
     if (state_.BoundaryIrregular() + state_.BoundaryDelta(touched) > state_.BoundaryLimit())
       return GuardVerdict::Boundary;
     if (MinAngleAround(touched) < std::min(opt_.minAngleDeg, angleBefore)) return GuardVerdict::Angle;
-    if (DeviationAround(touched) > budget_) return GuardVerdict::Hausdorff;
+    double crease = 0;
+    if (DeviationAround(touched, &crease) > budget_ || crease > creaseBudget_) return GuardVerdict::Hausdorff;
     return GuardVerdict::Kept;
   }
 
@@ -98,6 +102,7 @@ class EditGuard {
     }
     RelaxOptions ro;
     ro.iterations = opt_.localRelaxIterations;
+    ro.creaseFixedDeg = opt_.creaseDeg;  // relaxing across a crease would round it off
     LocalRelax(m_, movable, &original_, ro);
   }
 
@@ -129,8 +134,8 @@ class EditGuard {
   /// constructor) over each edited star to the edited faces of one more ring (so a sample
   /// near the border still finds its closest edited face). (b) is what catches a crease or a
   /// tip cut off by an edit. Only "above the budget or not" matters, so (a) stops at the
-  /// first excess.
-  double DeviationAround(const std::vector<int>& seeds) {
+  /// first excess. *crease: the largest deviation of (b)'s samples on creases.
+  double DeviationAround(const std::vector<int>& seeds, double* crease) {
     std::vector<int> live;
     for (int v : seeds)
       if (ed_.IsLive(v)) live.push_back(v);
@@ -246,6 +251,7 @@ class EditGuard {
       const vcg::Triangle3<float>& t = tri[size_t(bestFace)];
       if (originalSamples_.Normal(i).dot((t.P(1) - t.P(0)) ^ (t.P(2) - t.P(0))) <= 0) continue;
       mx = std::max(mx, double(best));
+      if (sampleOnCrease_[size_t(i)]) *crease = std::max(*crease, double(best));
     }
     return mx;
   }
@@ -258,15 +264,19 @@ class EditGuard {
   void BuildInputSamples(double perEdge) {
     const double h = MeanEdgeLength(m_);
     std::vector<vcg::Point3f> samples, normals;
-    SharpEdgeSamples(original_.Mesh(), opt_.sharpEdgeDeg, samples, normals);
+    sampleOnCrease_.clear();
+    SharpEdgeSamples(original_.Mesh(), opt_.sharpEdgeDeg, opt_.creaseDeg, samples, normals, sampleOnCrease_);
     if (perEdge > 0) ThinnedSurfaceSamples(original_.Mesh(), h / perEdge, samples, normals);
+    sampleOnCrease_.resize(samples.size(), 0);
     originalSamples_.Build(std::move(samples), std::move(normals), h);
   }
 
   /// Ends and midpoints of the edges of m whose dihedral angle exceeds angleDeg, with the
-  /// normal of each face along the edge. O(F log F).
-  static void SharpEdgeSamples(const SurfaceProjector::PMesh& m, double angleDeg, std::vector<vcg::Point3f>& pts,
-                               std::vector<vcg::Point3f>& nrm) {
+  /// normal of each face along the edge; onCrease[i]: sample i lies on an interior edge whose
+  /// dihedral angle also exceeds creaseDeg (when creaseDeg > 0). O(F log F).
+  static void SharpEdgeSamples(const SurfaceProjector::PMesh& m, double angleDeg, double creaseDeg,
+                               std::vector<vcg::Point3f>& pts, std::vector<vcg::Point3f>& nrm,
+                               std::vector<char>& onCrease) {
     // One flat array of half-edges sorted by (edge, face), not a map of vectors: the same
     // samples in the same order (the map's pointer keys ordered the vertices by index), and
     // 12 bytes per half-edge instead of a node and a vector per edge (at 1.2M faces the map
@@ -286,12 +296,13 @@ class EditGuard {
     std::sort(he.begin(), he.end(), [](const HalfEdge& x, const HalfEdge& y) {
       return x.a != y.a ? x.a < y.a : x.b != y.b ? x.b < y.b : x.f < y.f;
     });
-    const double c = std::cos(angleDeg * M_PI / 180.0);
+    const double c = std::cos(angleDeg * M_PI / 180.0), cc = std::cos(creaseDeg * M_PI / 180.0);
     for (size_t i = 0, j = 0; i < he.size(); i = j) {
       for (j = i + 1; j < he.size() && he[j].a == he[i].a && he[j].b == he[i].b; ++j) {
       }
       // boundary and non-manifold edges are features too
-      const bool sharp = j - i != 2 || double(m.face[he[i].f].cN().dot(m.face[he[i + 1].f].cN())) < c;
+      const double dot = j - i != 2 ? 1.0 : double(m.face[he[i].f].cN().dot(m.face[he[i + 1].f].cN()));
+      const bool sharp = j - i != 2 || dot < c, crease = creaseDeg > 0 && j - i == 2 && dot < cc;
       if (!sharp) continue;
       const auto& a = m.vert[he[i].a];
       const auto& b = m.vert[he[i].b];
@@ -299,6 +310,7 @@ class EditGuard {
         for (const vcg::Point3f& p : {a.cP(), b.cP(), vcg::Point3f((a.cP() + b.cP()) / 2.f)}) {
           pts.push_back(p);
           nrm.push_back(m.face[he[k].f].cN());
+          onCrease.push_back(crease);
         }
     }
   }
@@ -334,6 +346,8 @@ class EditGuard {
   Editor& ed_;
   ReductionState<MeshType>& state_;
   double budget_ = 0;           ///< per-edit Hausdorff budget (absolute), tightened by retries
+  double creaseBudget_ = 0;     ///< per-edit budget of the crease samples (absolute)
+  std::vector<char> sampleOnCrease_;  ///< per input sample: on a crease (opt.creaseDeg)
   double samplesPerEdge_ = 0;   ///< input samples per edge length besides sharp edges, raised by retries
   SampleGrid originalSamples_;  ///< the input's samples, for DeviationAround()
   StampSet faceSeen_;           ///< DeviationAround's set of the faces it gathered

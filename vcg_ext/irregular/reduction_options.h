@@ -70,6 +70,13 @@ struct ReductionOptions {
                                         ///< selection); vertices created later are free
   double sharpEdgeDeg = 25;             ///< default 25: input edges sharper than this are sampled for the Hausdorff
                                         ///< check
+  double creaseDeg = 60;                ///< default 60 (not a filter parameter): no relaxation (after an edit, in a
+                                        ///< transport, at the end) moves a vertex on an input edge sharper than
+                                        ///< this, so creases stay sharp; 0: none
+  double creaseBudgetPercent = 0.05;    ///< default 0.05 (not a filter parameter): an edit that leaves a sample of
+                                        ///< those creases farther than this (percent of the diagonal) from the
+                                        ///< edited surface is undone (a flip across a crease, a collapse of a
+                                        ///< crease vertex); the Hausdorff budget still holds elsewhere
   double hausdorffSamplesPerEdge = 0;   ///< default 0 (sharp edges only): input samples per edited edge length for
                                         ///< the Hausdorff check besides its sharp edges; 2 is stricter and ~3x slower
   int localRelaxIterations = 3;         ///< default 3: sweeps of local relaxation of the 2-ring after each step

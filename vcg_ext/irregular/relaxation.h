@@ -150,6 +150,9 @@ struct RelaxOptions {
   double damping = 1.0;           ///< global: share of the solved displacement applied per round
   const BoundaryCurve* boundaryCurve = nullptr;  ///< if set, boundary vertices slide along it (header)
   double cornerAngleDeg = 30;     ///< with boundaryCurve: |corner angle - 180| >= this stays fixed
+  double creaseFixedDeg = 0;      ///< local, > 0: an interior vertex on an edge sharper than this stays where
+                                  ///< it is (relaxing it would round the crease off); found per vertex,
+                                  ///< O(valence), unlike the per-mesh flags of CreaseVertices. 0: none
 };
 
 struct RelaxReport {
@@ -269,6 +272,20 @@ typename MeshType::CoordType VertexNormal(const VertexStar<MeshType>& st) {
   return n.Normalize();
 }
 
+/// True when one of v's edges has a dihedral angle sharper than cos^-1(minCos) (v on a crease).
+/// v interior. O(valence).
+template <class MeshType>
+bool OnCrease(const VertexStar<MeshType>& st, typename MeshType::VertexType* v, double minCos) {
+  for (const auto& k : st.corners) {
+    auto* f = k.f;
+    const int z = f->V(0) == v ? 0 : f->V(1) == v ? 1 : 2;
+    auto* g = f->FFp(z);  // across the edge (v, V(z + 1)): each interior edge at v once
+    if (g != f && double(vcg::TriangleNormal(*f).Normalize().dot(vcg::TriangleNormal(*g).Normalize())) < minCos)
+      return true;
+  }
+  return false;
+}
+
 /// Live and not on a crease (crease: per-vertex flags, or null for none).
 template <class MeshType>
 bool Movable(MeshType& m, int v, const std::vector<char>* crease) {
@@ -293,9 +310,20 @@ RelaxReport LocalRelax(MeshType& m, const std::vector<int>& region, const Surfac
   auto t0 = std::chrono::steady_clock::now();
   RelaxReport rep;
   // O(region x sweeps): called after every edit, so nothing here may be sized by the mesh.
+  // The vertices on creases (opt.creaseFixedDeg) are found once, before the sweeps move anything.
+  std::vector<char> onCrease;
+  if (opt.creaseFixedDeg > 0) {
+    const double minCos = std::cos(opt.creaseFixedDeg * M_PI / 180.0);
+    onCrease.assign(region.size(), 0);
+    for (size_t i = 0; i < region.size(); ++i) {
+      auto* vp = &m.vert[size_t(region[i])];
+      if (!vp->IsD()) onCrease[i] = relax_detail::OnCrease<MeshType>(StarOf<MeshType>(vp), vp, minCos);
+    }
+  }
   for (int it = 0; it < opt.iterations; ++it) {
-    for (int v : region) {
-      if (!relax_detail::Movable(m, v, creaseIn)) continue;
+    for (size_t ri = 0; ri < region.size(); ++ri) {
+      const int v = region[ri];
+      if (!relax_detail::Movable(m, v, creaseIn) || (!onCrease.empty() && onCrease[ri])) continue;
       auto* vp = &m.vert[size_t(v)];
       VertexStar<MeshType> st = StarOf<MeshType>(vp);
       if (st.neighbors.empty()) continue;
