@@ -132,31 +132,28 @@ TEST(Relaxation, CreaseVerticesStayFixed) {
     if (crease[i]) EXPECT_EQ(m.vert[i].P(), before[i]);
 }
 
-// The per-vertex form (RelaxOptions::creaseFixedDeg, O(valence) per vertex, what the automatic
-// reduction uses after every edit): exactly the vertices CreaseVertices flags stay, bit for bit,
-// and the others are free (many move).
-TEST(Relaxation, CreaseFixedDegKeepsExactlyTheCreaseVertices) {
+// Crease lines (crease_lines.h): on fandisk every sharp edge belongs to a long line, so with
+// minEdges 1 the flags are CreaseVertices', with 4 nearly all of them remain, and no set of
+// sharp edges is as long as the mesh has faces.
+TEST(Relaxation, CreaseLinesAreLongSetsOfSharpEdges) {
   TMesh m;
   ASSERT_TRUE(test::LoadCorpus(m, "fandisk.off")) << "corpus mesh missing (run scripts/setup.sh)";
-  SurfaceProjector original(m);
-  const std::vector<char> crease = CreaseVertices(m, 60.0);
-  std::vector<vcg::Point3f> before;
-  for (auto& v : m.vert) before.push_back(v.P());
-  RelaxOptions opt;
-  opt.creaseFixedDeg = 60;
-  opt.iterations = 3;  // the vertices on creases are found before the first sweep
-  LocalRelax(m, AllVertices(m), &original, opt);
-  int fixed = 0, moved = 0;
-  for (size_t i = 0; i < m.vert.size(); ++i) {
-    if (crease[i]) {
-      EXPECT_EQ(m.vert[i].P(), before[i]) << "crease vertex " << i;
-      ++fixed;
-    } else {
-      moved += !(m.vert[i].P() == before[i]);
-    }
+  const std::vector<char> all = CreaseVertices(m, 60.0);
+  const std::vector<char> one = CreaseLineVertices(m, 60.0, 1);
+  const std::vector<char> lines = CreaseLineVertices(m, 60.0, 4);
+  const std::vector<char> none = CreaseLineVertices(m, 60.0, int(m.face.size()));
+  EXPECT_TRUE(one == all);
+  int nAll = 0, nLines = 0, nNone = 0;
+  for (size_t i = 0; i < all.size(); ++i) {
+    nAll += all[i], nLines += lines[i], nNone += none[i];
+    EXPECT_LE(lines[i], all[i]) << "vertex " << i;
   }
-  EXPECT_GT(fixed, 200);
-  EXPECT_GT(moved, int(m.vert.size()) / 4);
+  EXPECT_GT(nAll, 200);
+  EXPECT_GT(nLines, nAll * 9 / 10);
+  EXPECT_EQ(nNone, 0);
+  // two sharp edges alone are not a line of three
+  std::vector<std::pair<uint32_t, uint32_t>> e{{0, 1}, {1, 2}, {5, 6}, {6, 7}, {7, 8}};
+  EXPECT_EQ(CreaseLineEdges(e, 10, 3), (std::vector<char>{0, 0, 1, 1, 1}));
 }
 
 TEST(Quality, MeasuresOnEquilateralLattice) {

@@ -55,9 +55,10 @@ class AutomaticReduction {
         original_(original),
         opt_(std::move(opt)),
         ed_(m),
-        comp_(ed_, &original, Quiet(opt_.creaseDeg)),
+        crease_(CreaseLineVertices(m, opt_.creaseDeg, opt_.creaseMinEdges)),
+        comp_(ed_, &original, Quiet(&crease_)),
         state_(m, ed_, opt_),
-        guard_(m, original, opt_, ed_, state_),
+        guard_(m, original, opt_, ed_, state_, &crease_),
         cancel_(m, ed_, comp_, guard_, state_),
         transport_(m, opt_, ed_, comp_.atomic(), guard_, state_, cancel_) {}
 
@@ -212,10 +213,10 @@ class AutomaticReduction {
     state_.Failed(v);
   }
 
-  static CompositeOptions Quiet(double creaseDeg) {
+  static CompositeOptions Quiet(const std::vector<char>* crease) {
     CompositeOptions o;
     o.relax = true;
-    o.creaseDeg = creaseDeg;
+    o.crease = crease;
     return o;
   }
 
@@ -318,9 +319,10 @@ class AutomaticReduction {
     std::vector<int> all;
     for (size_t i = 0; i < m_.vert.size(); ++i)
       if (ed_.IsLive(int(i)) && !state_.Frozen(int(i))) all.push_back(int(i));
-    // relaxing the vertices on creases would round them (issue 14: creases within 0.1%): they
-    // stay, in the global solve and in the local sweeps
-    const std::vector<char> crease = CreaseVertices(m_, opt_.creaseDeg);
+    // relaxing the vertices of crease lines would round them (issue 14: creases within 0.1%):
+    // they stay, the input's and those of the lines now (vertices edits created on them)
+    std::vector<char> crease = CreaseLineVertices(m_, opt_.creaseDeg, opt_.creaseMinEdges);
+    for (size_t i = 0; i < crease_.size() && i < crease.size(); ++i) crease[i] |= crease_[i];
     if (opt_.finalRelax == RelaxMode::Global) {
       const double before = MeasureShape(m_).minAngleDeg;
       std::vector<CoordType> saved;
@@ -339,8 +341,7 @@ class AutomaticReduction {
     const double angleBeforeSweeps = MeasureShape(m_).minAngleDeg;
     RelaxOptions lo;
     lo.iterations = opt_.finalLocalSweeps;
-    lo.creaseFixedDeg = opt_.creaseDeg;
-    LocalRelax(m_, all, &original_, lo);
+    LocalRelax(m_, all, &original_, lo, &crease);
     for (auto& f : m_.face)
       if (!f.IsD()) f.N() = vcg::TriangleNormal(f).Normalize();
     // The sweeps are not checked vertex by vertex against the Hausdorff budget (sharp creases
@@ -363,6 +364,11 @@ class AutomaticReduction {
   const SurfaceProjector& original_;
   ReductionOptions opt_;
   Editor ed_;
+  /// Per vertex index of the input, 1 on a crease line (opt.creaseDeg, opt.creaseMinEdges): no
+  /// relaxation moves these, so creases stay sharp (issue 14). Vertices created later are free
+  /// (the guard's crease check undoes an edit that cuts a crease); indices are stable during a
+  /// run (nothing is compacted until its end).
+  std::vector<char> crease_;
   CompositeOperations<MeshType> comp_;
   ReductionState<MeshType> state_;
   EditGuard<MeshType> guard_;

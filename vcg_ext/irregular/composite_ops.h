@@ -39,8 +39,8 @@ struct CompositeOptions {
   bool relax = true;           ///< local relaxation of the 2-ring after every atomic step
   int relaxIterations = 3;     ///< sweeps per step
   int maxTransportSteps = 200; ///< bound on pair steps while transporting toward a partner
-  double creaseDeg = 0;        ///< > 0: the relaxation never moves a vertex on an edge sharper than this
-                               ///< (RelaxOptions::creaseFixedDeg; the automatic reduction's creases); 0: none
+  const std::vector<char>* crease = nullptr;  ///< per vertex index, 1 = never moved by the relaxation (the
+                                              ///< automatic reduction's crease lines); null: none
   std::function<void(int, const char*)> progress;  ///< (percent, message), may be empty
 };
 
@@ -492,8 +492,7 @@ class CompositeOperations {
       for (auto& c : ed_.Star(v).corners) ed_.journal().SaveFace(c.f);
     // texture coordinates re-sampled where the vertices moved to (the faces are journaled)
     AttributeResampler<MeshType> texture(ed_.Mesh(), ring);
-    ro.creaseFixedDeg = opt_.creaseDeg;
-    LocalRelax(ed_.Mesh(), ring, original_, ro);
+    LocalRelax(ed_.Mesh(), ring, original_, ro, opt_.crease);
     texture.Resample();
   }
 

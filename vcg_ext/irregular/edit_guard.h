@@ -47,9 +47,10 @@ class EditGuard {
   /// hausdorffSamplesPerEdge points per edge elsewhere): between samples the true distance can
   /// be higher, so a tenth of the budget is kept back; the driver measures the result and
   /// redoes the run if it still overshoots (Tighten).
+  /// crease: per vertex index, 1 = never moved by RelaxAround (null: none); outlives the guard.
   EditGuard(MeshType& m, const SurfaceProjector& original, const ReductionOptions& opt, Editor& ed,
-            ReductionState<MeshType>& state)
-      : m_(m), original_(original), opt_(opt), ed_(ed), state_(state) {
+            ReductionState<MeshType>& state, const std::vector<char>* crease = nullptr)
+      : m_(m), original_(original), opt_(opt), ed_(ed), state_(state), crease_(crease) {
     budget_ = 0.9 * opt_.hausdorffBudgetPercent / 100.0 * double(original.Diagonal());
     creaseBudget_ = opt_.creaseBudgetPercent / 100.0 * double(original.Diagonal());
     BuildInputSamples(samplesPerEdge_ = opt_.hausdorffSamplesPerEdge);
@@ -102,8 +103,7 @@ class EditGuard {
     }
     RelaxOptions ro;
     ro.iterations = opt_.localRelaxIterations;
-    ro.creaseFixedDeg = opt_.creaseDeg;  // relaxing across a crease would round it off
-    LocalRelax(m_, movable, &original_, ro);
+    LocalRelax(m_, movable, &original_, ro, crease_);  // crease vertices stay: moving them rounds the crease
   }
 
   /// Smallest angle (degrees) of the faces around the 2-ring of the seeds.
@@ -265,16 +265,18 @@ class EditGuard {
     const double h = MeanEdgeLength(m_);
     std::vector<vcg::Point3f> samples, normals;
     sampleOnCrease_.clear();
-    SharpEdgeSamples(original_.Mesh(), opt_.sharpEdgeDeg, opt_.creaseDeg, samples, normals, sampleOnCrease_);
+    SharpEdgeSamples(original_.Mesh(), opt_.sharpEdgeDeg, opt_.creaseDeg, opt_.creaseMinEdges, samples, normals,
+                     sampleOnCrease_);
     if (perEdge > 0) ThinnedSurfaceSamples(original_.Mesh(), h / perEdge, samples, normals);
     sampleOnCrease_.resize(samples.size(), 0);
     originalSamples_.Build(std::move(samples), std::move(normals), h);
   }
 
   /// Ends and midpoints of the edges of m whose dihedral angle exceeds angleDeg, with the
-  /// normal of each face along the edge; onCrease[i]: sample i lies on an interior edge whose
-  /// dihedral angle also exceeds creaseDeg (when creaseDeg > 0). O(F log F).
-  static void SharpEdgeSamples(const SurfaceProjector::PMesh& m, double angleDeg, double creaseDeg,
+  /// normal of each face along the edge; onCrease[i]: sample i lies on a crease line (an
+  /// interior edge sharper than creaseDeg, in a connected set of at least creaseMinEdges of
+  /// them, crease_lines.h; none when creaseDeg is 0). O(F log F).
+  static void SharpEdgeSamples(const SurfaceProjector::PMesh& m, double angleDeg, double creaseDeg, int creaseMinEdges,
                                std::vector<vcg::Point3f>& pts, std::vector<vcg::Point3f>& nrm,
                                std::vector<char>& onCrease) {
     // One flat array of half-edges sorted by (edge, face), not a map of vectors: the same
@@ -297,12 +299,24 @@ class EditGuard {
       return x.a != y.a ? x.a < y.a : x.b != y.b ? x.b < y.b : x.f < y.f;
     });
     const double c = std::cos(angleDeg * M_PI / 180.0), cc = std::cos(creaseDeg * M_PI / 180.0);
+    // the crease lines first: the edges sharper than creaseDeg, kept when their set is long
+    std::vector<std::pair<uint32_t, uint32_t>> creaseEdges;
+    for (size_t i = 0, j = 0; i < he.size(); i = j) {
+      for (j = i + 1; j < he.size() && he[j].a == he[i].a && he[j].b == he[i].b; ++j) {
+      }
+      if (creaseDeg > 0 && j - i == 2 && double(m.face[he[i].f].cN().dot(m.face[he[i + 1].f].cN())) < cc)
+        creaseEdges.push_back({he[i].a, he[i].b});
+    }
+    const std::vector<char> lineEdge = CreaseLineEdges(creaseEdges, m.vert.size(), creaseMinEdges);
+    size_t nextCrease = 0;  // creaseEdges is in the order of the loop below
     for (size_t i = 0, j = 0; i < he.size(); i = j) {
       for (j = i + 1; j < he.size() && he[j].a == he[i].a && he[j].b == he[i].b; ++j) {
       }
       // boundary and non-manifold edges are features too
       const double dot = j - i != 2 ? 1.0 : double(m.face[he[i].f].cN().dot(m.face[he[i + 1].f].cN()));
-      const bool sharp = j - i != 2 || dot < c, crease = creaseDeg > 0 && j - i == 2 && dot < cc;
+      const bool sharpCrease = creaseDeg > 0 && j - i == 2 && dot < cc;
+      const bool crease = sharpCrease && lineEdge[nextCrease++];
+      const bool sharp = j - i != 2 || dot < c;
       if (!sharp) continue;
       const auto& a = m.vert[he[i].a];
       const auto& b = m.vert[he[i].b];
@@ -345,6 +359,7 @@ class EditGuard {
   const ReductionOptions& opt_;
   Editor& ed_;
   ReductionState<MeshType>& state_;
+  const std::vector<char>* crease_;  ///< vertices RelaxAround never moves (the input's crease lines)
   double budget_ = 0;           ///< per-edit Hausdorff budget (absolute), tightened by retries
   double creaseBudget_ = 0;     ///< per-edit budget of the crease samples (absolute)
   std::vector<char> sampleOnCrease_;  ///< per input sample: on a crease (opt.creaseDeg)

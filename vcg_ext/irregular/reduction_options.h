@@ -70,9 +70,12 @@ struct ReductionOptions {
                                         ///< selection); vertices created later are free
   double sharpEdgeDeg = 25;             ///< default 25: input edges sharper than this are sampled for the Hausdorff
                                         ///< check
-  double creaseDeg = 60;                ///< default 60 (not a filter parameter): no relaxation (after an edit, in a
-                                        ///< transport, at the end) moves a vertex on an input edge sharper than
-                                        ///< this, so creases stay sharp; 0: none
+  double creaseDeg = 60;                ///< default 60 (not a filter parameter): the input's crease lines, connected
+                                        ///< sets of at least creaseMinEdges edges sharper than this (crease_lines.h),
+                                        ///< stay sharp: no relaxation moves their vertices (after an edit, in a
+                                        ///< transport, at the end); 0: none
+  int creaseMinEdges = 8;               ///< default 8 (not a filter parameter): fewer sharp edges together are a
+                                        ///< coarse spot (an ear tip), not a crease
   double creaseBudgetPercent = 0.05;    ///< default 0.05 (not a filter parameter): an edit that leaves a sample of
                                         ///< those creases farther than this (percent of the diagonal) from the
                                         ///< edited surface is undone (a flip across a crease, a collapse of a

@@ -39,6 +39,7 @@
 #include <Eigen/Sparse>
 #include <vcg/complex/complex.h>
 
+#include "crease_lines.h"
 #include "surface_projector.h"
 #include "stamp_set.h"
 #include "topology.h"
@@ -150,9 +151,6 @@ struct RelaxOptions {
   double damping = 1.0;           ///< global: share of the solved displacement applied per round
   const BoundaryCurve* boundaryCurve = nullptr;  ///< if set, boundary vertices slide along it (header)
   double cornerAngleDeg = 30;     ///< with boundaryCurve: |corner angle - 180| >= this stays fixed
-  double creaseFixedDeg = 0;      ///< local, > 0: an interior vertex on an edge sharper than this stays where
-                                  ///< it is (relaxing it would round the crease off); found per vertex,
-                                  ///< O(valence), unlike the per-mesh flags of CreaseVertices. 0: none
 };
 
 struct RelaxReport {
@@ -215,6 +213,29 @@ std::vector<char> CreaseVertices(MeshType& m, double angleDeg) {
   return crease;
 }
 
+/// 1 for the vertices of crease lines (crease_lines.h): connected sets of at least minEdges
+/// interior edges whose dihedral angle exceeds angleDeg. Needs FF adjacency. O(F + V), once.
+template <class MeshType>
+std::vector<char> CreaseLineVertices(MeshType& m, double angleDeg, int minEdges) {
+  std::vector<char> crease(m.vert.size(), 0);
+  if (angleDeg <= 0) return crease;
+  const double c = std::cos(angleDeg * M_PI / 180.0);
+  std::vector<std::pair<uint32_t, uint32_t>> sharp;
+  for (auto& f : m.face) {
+    if (f.IsD()) continue;
+    for (int z = 0; z < 3; ++z) {
+      auto* g = f.FFp(z);
+      if (g == &f || g < &f) continue;  // each interior edge once
+      if (double(vcg::TriangleNormal(f).Normalize().dot(vcg::TriangleNormal(*g).Normalize())) < c)
+        sharp.push_back({uint32_t(vcg::tri::Index(m, f.V(z))), uint32_t(vcg::tri::Index(m, f.V((z + 1) % 3)))});
+    }
+  }
+  const std::vector<char> keep = CreaseLineEdges(sharp, m.vert.size(), minEdges);
+  for (size_t i = 0; i < sharp.size(); ++i)
+    if (keep[i]) crease[sharp[i].first] = crease[sharp[i].second] = 1;
+  return crease;
+}
+
 namespace relax_detail {
 
 /// Would moving v to p turn one of its faces by more than acos(minCos)?
@@ -272,20 +293,6 @@ typename MeshType::CoordType VertexNormal(const VertexStar<MeshType>& st) {
   return n.Normalize();
 }
 
-/// True when one of v's edges has a dihedral angle sharper than cos^-1(minCos) (v on a crease).
-/// v interior. O(valence).
-template <class MeshType>
-bool OnCrease(const VertexStar<MeshType>& st, typename MeshType::VertexType* v, double minCos) {
-  for (const auto& k : st.corners) {
-    auto* f = k.f;
-    const int z = f->V(0) == v ? 0 : f->V(1) == v ? 1 : 2;
-    auto* g = f->FFp(z);  // across the edge (v, V(z + 1)): each interior edge at v once
-    if (g != f && double(vcg::TriangleNormal(*f).Normalize().dot(vcg::TriangleNormal(*g).Normalize())) < minCos)
-      return true;
-  }
-  return false;
-}
-
 /// Live and not on a crease (crease: per-vertex flags, or null for none).
 template <class MeshType>
 bool Movable(MeshType& m, int v, const std::vector<char>* crease) {
@@ -310,20 +317,9 @@ RelaxReport LocalRelax(MeshType& m, const std::vector<int>& region, const Surfac
   auto t0 = std::chrono::steady_clock::now();
   RelaxReport rep;
   // O(region x sweeps): called after every edit, so nothing here may be sized by the mesh.
-  // The vertices on creases (opt.creaseFixedDeg) are found once, before the sweeps move anything.
-  std::vector<char> onCrease;
-  if (opt.creaseFixedDeg > 0) {
-    const double minCos = std::cos(opt.creaseFixedDeg * M_PI / 180.0);
-    onCrease.assign(region.size(), 0);
-    for (size_t i = 0; i < region.size(); ++i) {
-      auto* vp = &m.vert[size_t(region[i])];
-      if (!vp->IsD()) onCrease[i] = relax_detail::OnCrease<MeshType>(StarOf<MeshType>(vp), vp, minCos);
-    }
-  }
   for (int it = 0; it < opt.iterations; ++it) {
-    for (size_t ri = 0; ri < region.size(); ++ri) {
-      const int v = region[ri];
-      if (!relax_detail::Movable(m, v, creaseIn) || (!onCrease.empty() && onCrease[ri])) continue;
+    for (int v : region) {
+      if (!relax_detail::Movable(m, v, creaseIn)) continue;
       auto* vp = &m.vert[size_t(v)];
       VertexStar<MeshType> st = StarOf<MeshType>(vp);
       if (st.neighbors.empty()) continue;
