@@ -111,9 +111,7 @@ class AutomaticReduction {
     state_.DropSnapshot();
     if (!rep.allUndone) Explain(rep);
     rep.undoneAt = CompactedIndices(state_.UndoneAt());
-    vcg::tri::Allocator<MeshType>::CompactEveryVector(m_);
-    vcg::tri::UpdateTopology<MeshType>::FaceFace(m_);
-    vcg::tri::UpdateTopology<MeshType>::VertexFace(m_);
+    CompactKeepingAdjacency(m_);
     Histogram(rep.histogramAfter, rep.irregularAfter);
     rep.boundaryIrregularAfter = CountIrregularByPlace(m_).boundary;
     rep.globalRelaxUndone = !globalKept_;
