@@ -172,6 +172,40 @@ TEST(MemorySnapshot, RestoresOptionalComponentsAndAttributes) {
   for (size_t i = 0; i < m.face.size(); ++i) ASSERT_EQ(unsigned(m.face[i].C()[0]), color[i]);
 }
 
+TEST(MemorySnapshot, GivesFFBackFromTheVFListsAndStoresOnlyWhatTheyDoNotGive) {
+  // a closed, compacted, consistently oriented manifold: no FF stored
+  TMesh closed;
+  ASSERT_TRUE(Remeshed(closed, "bunny00.off", 2000)) << "corpus mesh missing (run scripts/setup.sh)";
+  CompactSnapshot<TMesh> c;
+  c.Take(closed);
+  EXPECT_EQ(c.StoredFF(), 0u);
+  EXPECT_LE(c.Bytes(), 48 * closed.face.size() + 28 * closed.vert.size());
+  // a patch with a border, holes left by edits (deleted faces keep whatever FF they had), and
+  // one live face whose FF a bug elsewhere left wrong: each is given back as it was
+  TMesh m;
+  test::HexPatch(m, 10);
+  ASSERT_GT(RandomEdits(m, 120, 23), 60);
+  int deleted = 0;
+  for (auto& f : m.face) deleted += f.IsD();
+  ASSERT_GT(deleted, 0);
+  TMesh::FaceType* odd = nullptr;
+  for (auto& f : m.face)
+    if (!f.IsD() && !odd) odd = &f;
+  TMesh::FaceType* const across = odd->FFp(1);
+  const int acrossEdge = odd->FFi(1);
+  odd->FFp(1) = odd;  // a border edge 2 that is not there
+  odd->FFi(1) = 2;
+  const test::MeshSnapshot before = test::Snapshot(m);
+  CompactSnapshot<TMesh> snap;
+  snap.Take(m);
+  EXPECT_EQ(snap.StoredFF(), size_t(deleted) + 1);
+  odd->FFp(1) = across;  // valid again for the edits
+  odd->FFi(1) = acrossEdge;
+  EXPECT_GT(RandomEdits(m, 200, 29), 100);
+  snap.Restore(m);
+  EXPECT_TRUE(test::Snapshot(m) == before);
+}
+
 // ------------------------------------------------------------------------------- room
 
 TEST(MemoryReserveRoom, GivesRoomWithoutChangingTheMeshOrBreakingAPointer) {

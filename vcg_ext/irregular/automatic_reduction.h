@@ -83,6 +83,7 @@ class AutomaticReduction {
         r.result = Result::Fail("interrupted: the mesh is unchanged");
         return r;
       }
+      state_.ReleaseSweepState();
       r.hausdorffPercent = HausdorffPercent(m_, original_);
       // the independent check of the tests samples more densely than HausdorffPercent: keep
       // a small margin below the budget

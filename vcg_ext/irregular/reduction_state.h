@@ -321,6 +321,17 @@ class ReductionState {
   /// Bytes the snapshot holds (0 when none).
   size_t SnapshotBytes() const { return snapshot_.Bytes(); }
 
+  /// Before the final measurement of a pass (automatic_reduction.h): gives back the per-vertex
+  /// stamps of kept edits and failed attempts (16 bytes a vertex), which only the sweeps read,
+  /// and the pages of freed heap memory (ReleaseFreedMemory), so that the measurement's grid is
+  /// not added on top of memory the run no longer uses. A retry starts with Reset() anyway;
+  /// the counts, the undone edits and the given-up regions stay for the report.
+  void ReleaseSweepState() {
+    std::vector<long>().swap(editedAt_);
+    std::vector<long>().swap(failedAt_);
+    ReleaseFreedMemory();
+  }
+
   /// Forgets the edit history (a retry starts from the restored input).
   void Reset() {
     epoch_ = 0;
