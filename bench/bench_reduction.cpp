@@ -11,11 +11,18 @@
 // files: saveRemeshed=<path> writes the remeshed input (OFF), saveResult=<path> the result, for
 // profiling the reduction alone on a fixed input and for comparing two runs byte by byte (with
 // several models, the model's name is appended).
+// memory (issue 14's memory target): timeLimit=<s> (0: none, the default), memory=1 prints the
+// resident memory (VmRSS, VmHWM of /proc/self/status) at every stage the reduction reports and
+// the peak of the whole process at the end; loadOnly=1 only loads the model(s) and saves them
+// (saveResult), the baseline the reduction's peak is compared with; peakFile=<path> writes the
+// process's peak (VmHWM, MiB) there at the end.
 // The end-to-end comparison with MeshLab's remeshing through meshlabserver is
 // scripts/bench_reduction.py; this executable isolates the algorithm's own time.
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -42,6 +49,19 @@ bool LoadPath(TMesh& m, const std::string& file) {
   return true;
 }
 
+/// A line of /proc/self/status ("VmRSS", "VmHWM") in MiB, or -1 where there is none.
+double StatusMiB(const char* key) {
+  FILE* f = std::fopen("/proc/self/status", "r");
+  if (!f) return -1;
+  char line[256];
+  double mib = -1;
+  const size_t n = std::strlen(key);
+  while (std::fgets(line, sizeof line, f))
+    if (std::strncmp(line, key, n) == 0 && line[n] == ':') mib = std::atof(line + n + 1) / 1024.0;
+  std::fclose(f);
+  return mib;
+}
+
 void Save(TMesh& m, const std::string& file, const std::string& model, size_t models) {
   std::string out = file;
   if (models > 1) out += "." + model.substr(model.find_last_of('/') + 1);
@@ -53,7 +73,8 @@ int main(int argc, char** argv) {
   const int n = argc > 1 ? std::atoi(argv[1]) : 20000;
   std::vector<std::string> models;
   ReductionOptions opt;
-  std::string saveRemeshed, saveResult;
+  std::string saveRemeshed, saveResult, peakFile;
+  bool memory = false, loadOnly = false;
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
     const size_t eq = a.find('=');
@@ -62,8 +83,8 @@ int main(int argc, char** argv) {
       continue;
     }
     const std::string key = a.substr(0, eq);
-    if (key == "saveRemeshed" || key == "saveResult") {
-      (key == "saveRemeshed" ? saveRemeshed : saveResult) = a.substr(eq + 1);
+    if (key == "saveRemeshed" || key == "saveResult" || key == "peakFile") {
+      (key == "saveRemeshed" ? saveRemeshed : key == "saveResult" ? saveResult : peakFile) = a.substr(eq + 1);
       continue;
     }
     const double v = std::atof(a.c_str() + eq + 1);
@@ -75,6 +96,9 @@ int main(int argc, char** argv) {
     else if (key == "minAngle") opt.minAngleDeg = v;
     else if (key == "budget") opt.hausdorffBudgetPercent = v;
     else if (key == "maxRefusals") opt.maxRefusalsPerRegion = int(v);
+    else if (key == "timeLimit") opt.timeLimitSeconds = v > 0 ? v : opt.timeLimitSeconds;
+    else if (key == "memory") memory = v != 0;
+    else if (key == "loadOnly") loadOnly = v != 0;
     else {
       std::fprintf(stderr, "unknown option %s\n", key.c_str());
       return 2;
@@ -91,7 +115,26 @@ int main(int argc, char** argv) {
       std::printf("%-14s missing\n", name.c_str());
       continue;
     }
+    if (loadOnly) {
+      if (!saveResult.empty()) Save(m, saveResult, name, models.size());
+      std::printf("%-14s loaded and saved: %d vertices, %d faces\n", name.c_str(), m.vn, m.fn);
+      continue;
+    }
     SurfaceProjector input(m);
+    if (memory) {
+      auto last = std::make_shared<std::string>();
+      opt.progress = [last, &m](int, const char* what) {
+        if (*last != what) {
+          *last = what;
+          // the vectors' sizes and capacities: a vector that outgrows its room is copied whole
+          std::printf("  memory: %-45s rss %7.1f MiB, peak %7.1f MiB; vert %zu/%zu, face %zu/%zu\n", what,
+                      StatusMiB("VmRSS"), StatusMiB("VmHWM"), m.vert.size(), m.vert.capacity(), m.face.size(),
+                      m.face.capacity());
+          std::fflush(stdout);
+        }
+        return true;
+      };
+    }
     auto t0 = std::chrono::steady_clock::now();
     RemeshOptions ro;
     ro.targetEdgeLength = EdgeLengthForVertexCount(vcg::tri::Stat<TMesh>::ComputeMeshArea(m), n);
@@ -101,6 +144,9 @@ int main(int argc, char** argv) {
     AutomaticReduction<TMesh> ar(m, input, opt);
     ReductionReport r = ar.Run();
     auto t2 = std::chrono::steady_clock::now();
+    if (memory)  // before the measurements below, which allocate grids of their own
+      std::printf("  memory: %-45s rss %7.1f MiB, peak %7.1f MiB\n", "after the run", StatusMiB("VmRSS"),
+                  StatusMiB("VmHWM"));
     if (!r) {
       std::printf("%-14s refused: %s\n", name.c_str(), r.result.reason.c_str());
       continue;
@@ -112,6 +158,14 @@ int main(int argc, char** argv) {
                 HausdorffPercent(m, input), s.minAngleDeg, 100 * s.shareBelow30,
                 std::chrono::duration<double>(t1 - t0).count(), std::chrono::duration<double>(t2 - t1).count(), r.budgetRetries, int(r.gaveUp.size()), r.gaveUpVertices, r.allUndone ? " (all undone)" : "");
     std::fflush(stdout);
+  }
+  const double peak = StatusMiB("VmHWM");
+  if (memory || loadOnly) std::printf("peak resident memory (VmHWM): %.1f MiB\n", peak);
+  if (!peakFile.empty()) {
+    if (FILE* f = std::fopen(peakFile.c_str(), "w")) {
+      std::fprintf(f, "%.1f\n", peak);
+      std::fclose(f);
+    }
   }
   return 0;
 }

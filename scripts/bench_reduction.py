@@ -37,7 +37,8 @@ FULL (by hand; its results go into the README). --sizes adds bunny00 at those si
 reduction settings of PLOT_SETTINGS on bunny00 at 20K and writes OUT/bench_reduction.svg (irregular
 count against time ratio, with the peer's point); --memory compares the peak resident memory of a
 reduction of a ~1.2M-face mesh (bunny00, two midpoint subdivisions) with a run that only loads and
-saves it. Times on a shared machine are noisy: quote the ratios.
+saves it (--memory-subdivisions 1: ~300K faces, a quicker check; --memory-timelimit: a time limit for
+the reduction, 0 = none, the whole run). Times on a shared machine are noisy: quote the ratios.
 """
 import argparse
 import hashlib
@@ -689,12 +690,13 @@ def memory_check(a, log):
     """Peak RSS of a reduction of bunny00 subdivided twice (midpoint, about 1.2M faces) against a
     run that loads and saves the same mesh (plugin loaded in both; each a whole process, its peak
     read from os.wait4 as /usr/bin/time reads it). Prints both peaks, the ratio and the verdict."""
-    src = os.path.join(a.out, "%s_sub%d.ply" % (MEMORY_MODEL, MEMORY_SUBDIVISIONS))
+    subdivisions = a.memory_subdivisions
+    src = os.path.join(a.out, "%s_sub%d.ply" % (MEMORY_MODEL, subdivisions))
     if not os.path.isfile(src):
         pymeshlab = _pymeshlab()
         ms = pymeshlab.MeshSet()
         ms.load_new_mesh(raw_path(MEMORY_MODEL))
-        ms.meshing_surface_subdivision_midpoint(iterations=MEMORY_SUBDIVISIONS, threshold=pymeshlab.PureValue(0))
+        ms.meshing_surface_subdivision_midpoint(iterations=subdivisions, threshold=pymeshlab.PureValue(0))
         ms.save_current_mesh(src)
     faces = len(load_arrays(src).faces)
     print("memory: %s (%d faces) ..." % (os.path.basename(src), faces), flush=True)
@@ -711,7 +713,7 @@ def memory_check(a, log):
     for r in (ls, rd):
         if r.get("own_peak_mib"):
             r["wait4_rss_mib"], r["rss_mib"] = r["rss_mib"], r["own_peak_mib"]
-    what = "%s x%d subdivided (%d faces)%s" % (MEMORY_MODEL, MEMORY_SUBDIVISIONS, faces,
+    what = "%s x%d subdivided (%d faces)%s" % (MEMORY_MODEL, subdivisions, faces,
                                                  ", timelimit %g s" % a.memory_timelimit if a.memory_timelimit else "")
     if ls["rc"] or rd["rc"]:
         print("memory: FAIL: load-and-save exited %d, reduction exited %d (log: %s)" % (ls["rc"], rd["rc"], log),
@@ -824,6 +826,9 @@ def main(argv=None):
     b.add_argument("--memory", action="store_true", help="peak memory on a ~1.2M-face input")
     b.add_argument("--memory-timelimit", type=float, default=0.0,
                    help="timelimit of the memory run (0: none; the peak may then come later)")
+    b.add_argument("--memory-subdivisions", type=int, default=MEMORY_SUBDIVISIONS,
+                   help="midpoint subdivisions of %s for the memory run (2: ~1.2M faces, the target's size; "
+                        "1: ~300K faces, a quicker check)" % MEMORY_MODEL)
     for name, fn in (("prepare", cmd_prepare), ("run-peer", cmd_run_peer), ("run-ours", cmd_run_ours)):
         p = sub.add_parser(name)
         common(p)

@@ -11,6 +11,7 @@
 #include <vcg/complex/algorithms/stat.h>
 #include <vcg/complex/append.h>
 
+#include <vcg_ext/irregular/automatic_reduction.h>
 #include <vcg_ext/irregular/graph_ops.h>
 #include <vcg_ext/irregular/mesh_checks.h>
 #include <vcg_ext/irregular/mesh_snapshot.h>
@@ -171,6 +172,40 @@ TEST(MemorySnapshot, RestoresOptionalComponentsAndAttributes) {
   for (size_t i = 0; i < m.face.size(); ++i) ASSERT_EQ(unsigned(m.face[i].C()[0]), color[i]);
 }
 
+TEST(MemorySnapshot, GivesFFBackFromTheVFListsAndStoresOnlyWhatTheyDoNotGive) {
+  // a closed, compacted, consistently oriented manifold: no FF stored
+  TMesh closed;
+  ASSERT_TRUE(Remeshed(closed, "bunny00.off", 2000)) << "corpus mesh missing (run scripts/setup.sh)";
+  CompactSnapshot<TMesh> c;
+  c.Take(closed);
+  EXPECT_EQ(c.StoredFF(), 0u);
+  EXPECT_LE(c.Bytes(), 48 * closed.face.size() + 28 * closed.vert.size());
+  // a patch with a border, holes left by edits (deleted faces keep whatever FF they had), and
+  // one live face whose FF a bug elsewhere left wrong: each is given back as it was
+  TMesh m;
+  test::HexPatch(m, 10);
+  ASSERT_GT(RandomEdits(m, 120, 23), 60);
+  int deleted = 0;
+  for (auto& f : m.face) deleted += f.IsD();
+  ASSERT_GT(deleted, 0);
+  TMesh::FaceType* odd = nullptr;
+  for (auto& f : m.face)
+    if (!f.IsD() && !odd) odd = &f;
+  TMesh::FaceType* const across = odd->FFp(1);
+  const int acrossEdge = odd->FFi(1);
+  odd->FFp(1) = odd;  // a border edge 2 that is not there
+  odd->FFi(1) = 2;
+  const test::MeshSnapshot before = test::Snapshot(m);
+  CompactSnapshot<TMesh> snap;
+  snap.Take(m);
+  EXPECT_EQ(snap.StoredFF(), size_t(deleted) + 1);
+  odd->FFp(1) = across;  // valid again for the edits
+  odd->FFi(1) = acrossEdge;
+  EXPECT_GT(RandomEdits(m, 200, 29), 100);
+  snap.Restore(m);
+  EXPECT_TRUE(test::Snapshot(m) == before);
+}
+
 // ------------------------------------------------------------------------------- room
 
 TEST(MemoryReserveRoom, GivesRoomWithoutChangingTheMeshOrBreakingAPointer) {
@@ -207,6 +242,83 @@ TEST(MemoryReserveRoom, OptionalComponentMeshKeepsItsAdjacency) {
   EXPECT_TRUE(test::OcfSnapshot(m) == before);
   EXPECT_GT(RandomEdits(m, 50, 9), 20);
   ASSERT_TRUE(CheckInvariants(m).ok);
+}
+
+// ------------------------------------------------------------------------------- compaction
+
+/// What the reduction did at its end before: vcg's compaction, then FF and VF rebuilt.
+template <class MeshT>
+void CompactAndRebuild(MeshT& m) {
+  vcg::tri::Allocator<MeshT>::CompactEveryVector(m);
+  vcg::tri::UpdateTopology<MeshT>::FaceFace(m);
+  vcg::tri::UpdateTopology<MeshT>::VertexFace(m);
+}
+
+TEST(MemoryCompaction, KeepsTheAdjacencyARebuildWouldFindClosedAndWithBoundary) {
+  for (int closed = 0; closed < 2; ++closed) {
+    TMesh a, b;
+    if (closed) {
+      ASSERT_TRUE(Remeshed(a, "bunny00.off", 2000)) << "corpus mesh missing (run scripts/setup.sh)";
+    } else {
+      test::HexPatch(a, 12);  // boundary edges: FF points to the face itself
+    }
+    vcg::tri::Append<TMesh, TMesh>::MeshCopy(b, a);
+    test::UpdateTopology(b);
+    ASSERT_TRUE(test::Snapshot(a) == test::Snapshot(b));
+    // the same edits on both (RandomEdits is deterministic): holes in both vectors
+    ASSERT_GT(RandomEdits(a, 300, 13), 150);
+    ASSERT_GT(RandomEdits(b, 300, 13), 150);
+    ASSERT_LT(a.vn, int(a.vert.size()));
+    ASSERT_LT(a.fn, int(a.face.size()));
+    CompactKeepingAdjacency(a);
+    CompactAndRebuild(b);
+    ASSERT_EQ(a.vert.size(), size_t(a.vn));
+    ASSERT_EQ(a.face.size(), size_t(a.fn));
+    EXPECT_TRUE(test::Snapshot(a) == test::Snapshot(b)) << (closed ? "closed" : "with boundary");
+    Result inv = CheckInvariants(a);
+    EXPECT_TRUE(inv.ok) << inv.reason;
+  }
+}
+
+TEST(MemoryCompaction, OptionalComponentMeshKeepsTheAdjacencyARebuildWouldFind) {
+  TMesh base;
+  ASSERT_TRUE(Remeshed(base, "bunny00.off", 1500)) << "corpus mesh missing (run scripts/setup.sh)";
+  TOMesh a, b;
+  test::CopyAsCMeshO(base, a);
+  test::CopyAsCMeshO(base, b);
+  ASSERT_GT(RandomEdits(a, 200, 17), 100);
+  ASSERT_GT(RandomEdits(b, 200, 17), 100);
+  ASSERT_LT(a.fn, int(a.face.size()));
+  CompactKeepingAdjacency(a);
+  CompactAndRebuild(b);
+  EXPECT_TRUE(test::OcfSnapshot(a) == test::OcfSnapshot(b));
+  Result inv = CheckInvariants(a);
+  EXPECT_TRUE(inv.ok) << inv.reason;
+}
+
+TEST(MemoryCompaction, AReductionThatDeletesElementsEndsWithTheAdjacencyARebuildWouldFind) {
+  TMesh m;
+  ASSERT_TRUE(Remeshed(m, "bunny00.off", 1500)) << "corpus mesh missing (run scripts/setup.sh)";
+  SurfaceProjector original(m);
+  // the holes the edits left in the vectors, seen at the stages the run reports (the last one,
+  // the final relaxation, comes just before the compaction)
+  size_t holes = 0;
+  ReductionOptions opt;
+  opt.progress = [&](int, const char*) {
+    holes = std::max(holes, m.vert.size() - size_t(m.vn) + m.face.size() - size_t(m.fn));
+    return true;
+  };
+  ReductionReport r = AutomaticReduction<TMesh>(m, original, opt).Run();
+  ASSERT_TRUE(r) << r.result.reason;
+  ASSERT_LT(r.irregularAfter, r.irregularBefore);
+  ASSERT_GT(holes, 0u) << "the run deleted nothing: the compaction had nothing to re-point";
+  ASSERT_EQ(m.vert.size(), size_t(m.vn));
+  ASSERT_EQ(m.face.size(), size_t(m.fn));
+  const test::MeshSnapshot after = test::Snapshot(m);
+  test::UpdateTopology(m);  // FaceFace and VertexFace from scratch
+  EXPECT_TRUE(test::Snapshot(m) == after);
+  Result inv = CheckInvariants(m);
+  EXPECT_TRUE(inv.ok) << inv.reason;
 }
 
 // ------------------------------------------------------------------------------- Hausdorff

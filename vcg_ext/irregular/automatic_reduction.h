@@ -84,6 +84,7 @@ class AutomaticReduction {
         r.result = Result::Fail("interrupted: the mesh is unchanged");
         return r;
       }
+      state_.ReleaseSweepState();
       r.hausdorffPercent = HausdorffPercent(m_, original_);
       // the independent check of the tests samples more densely than HausdorffPercent: keep
       // a small margin below the budget
@@ -112,9 +113,7 @@ class AutomaticReduction {
     state_.DropSnapshot();
     if (!rep.allUndone) Explain(rep);
     rep.undoneAt = CompactedIndices(state_.UndoneAt());
-    vcg::tri::Allocator<MeshType>::CompactEveryVector(m_);
-    vcg::tri::UpdateTopology<MeshType>::FaceFace(m_);
-    vcg::tri::UpdateTopology<MeshType>::VertexFace(m_);
+    CompactKeepingAdjacency(m_);
     Histogram(rep.histogramAfter, rep.irregularAfter);
     rep.boundaryIrregularAfter = CountIrregularByPlace(m_).boundary;
     rep.globalRelaxUndone = !globalKept_;

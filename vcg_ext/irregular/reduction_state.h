@@ -5,9 +5,10 @@
 // StartCount() and the snapshot are O(mesh), once per run.
 //
 // Memory: the snapshot is compact (mesh_snapshot.h: ~60 bytes per face, ~24 per vertex), and
-// TakeSnapshot gives the mesh's vectors room for the run's new elements (ReserveRoom), so the
-// first split of a run does not double them (std::vector's growth), which on a million-face
-// CMeshO with its optional adjacency costs ~200 MB.
+// TakeSnapshot gives the mesh's vectors room for the run's new elements (ReserveRoom), so that
+// a split does not double them (std::vector's growth: the old and the new vector resident at
+// once, ~200 MB on a million-face CMeshO with its optional adjacency). The run ends with
+// CompactKeepingAdjacency, which does not rebuild FF.
 #pragma once
 
 #include <algorithm>
@@ -17,6 +18,8 @@
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
+
+#include <vcg/complex/algorithms/update/topology.h>
 
 #include "atomic_ops.h"
 #include "graph_ops.h"
@@ -28,12 +31,6 @@
 namespace vcg_ext {
 namespace irregular {
 
-/// Makes the capacity of m.vert and m.face at least their size plus `spareVerts` /
-/// `spareFaces`, fixing every pointer to a moved element (face -> vertex, FF, VF, edge ->
-/// vertex, edge -> face), as vcg's Allocator does when it grows a vector, but to the size asked
-/// instead of double. Nothing else changes (sizes, counts, attributes). O(V + F) when it moves
-/// a vector, O(1) when the room is there already. Meshes with half-edges or tetrahedra are left
-/// alone (their pointers are not fixed here): returns false then.
 /// Gives the pages of freed heap memory back to the system. glibc keeps what many small blocks
 /// freed as resident memory (the edit guard's map of the input's edges, built and dropped by
 /// its constructor, left ~170 MB resident on a million-face input); a whole-mesh allocation
@@ -44,6 +41,12 @@ inline void ReleaseFreedMemory() {
 #endif
 }
 
+/// Makes the capacity of m.vert and m.face at least their size plus `spareVerts` /
+/// `spareFaces`, fixing every pointer to a moved element (face -> vertex, FF, VF, edge ->
+/// vertex, edge -> face), as vcg's Allocator does when it grows a vector, but to the size asked
+/// instead of double. Nothing else changes (sizes, counts, attributes). O(V + F) when it moves
+/// a vector, O(1) when the room is there already. Meshes with half-edges or tetrahedra are left
+/// alone (their pointers are not fixed here): returns false then.
 template <class MeshType>
 bool ReserveRoom(MeshType& m, size_t spareVerts, size_t spareFaces) {
   if (!m.hedge.empty() || !m.tetra.empty()) return false;
@@ -82,6 +85,22 @@ bool ReserveRoom(MeshType& m, size_t spareVerts, size_t spareFaces) {
       for (auto& e : m.edge) fix(e.EFp());
   }
   return true;
+}
+
+/// Removes the deleted vertices and faces, leaving the mesh as vcg's CompactEveryVector followed
+/// by UpdateTopology::FaceFace and ::VertexFace leaves it, without FaceFace: that one sorts a
+/// vector of 3F half-edges (32 bytes each, ~110 MiB at 1.2M faces: the end of a reduction's
+/// peak). CompactEveryVector keeps the order of the live elements and re-points FF and VF
+/// through its remap; on a manifold mesh an edge has one opposite face, so the FF it keeps is
+/// the FF FaceFace would find (a border edge points to its own face in both). VertexFace
+/// re-threads the VF lists in vcg's order (one pass, no allocation), so that what follows sees
+/// the lists it saw before. Precondition: FF and VF valid on the live elements (every edit keeps
+/// them so: mesh_checks.h), no live element pointing to a deleted one. O(V + F) time, O(V + F)
+/// indices of memory (vcg's remaps).
+template <class MeshType>
+void CompactKeepingAdjacency(MeshType& m) {
+  vcg::tri::Allocator<MeshType>::CompactEveryVector(m);
+  vcg::tri::UpdateTopology<MeshType>::VertexFace(m);
 }
 
 template <class MeshType>
@@ -274,13 +293,18 @@ class ReductionState {
 
   // ------------------------------------------------------------ the whole-run undo
   /// Saves every vertex and face once (mesh_snapshot.h): O(V + F) memory whatever the number
-  /// of edits. First gives the mesh's vectors room for an eighth more elements (at least 4096
-  /// vertices and 8192 faces), the new elements of a run being holes left by its edits, so
-  /// that they do not double when the first edit adds one (ReserveRoom; it may move the
-  /// elements: pointers into the mesh taken before are invalid after).
+  /// of edits. First gives the mesh's vectors room for half as many elements more (at least
+  /// 4096 vertices and 8192 faces): the elements a run adds stay in the vectors (a collapse
+  /// leaves a hole, a split appends), so that they do not double in the middle of the run, when
+  /// the old and the new vector and the snapshot are all resident at once (ReserveRoom; it may
+  /// move the elements: pointers into the mesh taken before are invalid after). The room costs
+  /// address space, not resident memory, until elements fill it: reserving writes nothing there.
+  /// An eighth was not enough: bunny00 subdivided once (301,632 faces, 19,715 irregular
+  /// vertices) ends its run with 383,490 faces in the vector (+27%), and the face vector
+  /// doubled in the transports: the run's peak.
   void TakeSnapshot() {
     ReleaseFreedMemory();
-    ReserveRoom(m_, std::max<size_t>(4096, m_.vert.size() / 8), std::max<size_t>(8192, m_.face.size() / 8));
+    ReserveRoom(m_, std::max<size_t>(4096, m_.vert.size() / 2), std::max<size_t>(8192, m_.face.size() / 2));
     snapshot_.Take(m_);
   }
   /// Gives back the mesh as TakeSnapshot saw it, bit for bit, and forgets the snapshot.
@@ -296,6 +320,17 @@ class ReductionState {
   }
   /// Bytes the snapshot holds (0 when none).
   size_t SnapshotBytes() const { return snapshot_.Bytes(); }
+
+  /// Before the final measurement of a pass (automatic_reduction.h): gives back the per-vertex
+  /// stamps of kept edits and failed attempts (16 bytes a vertex), which only the sweeps read,
+  /// and the pages of freed heap memory (ReleaseFreedMemory), so that the measurement's grid is
+  /// not added on top of memory the run no longer uses. A retry starts with Reset() anyway;
+  /// the counts, the undone edits and the given-up regions stay for the report.
+  void ReleaseSweepState() {
+    std::vector<long>().swap(editedAt_);
+    std::vector<long>().swap(failedAt_);
+    ReleaseFreedMemory();
+  }
 
   /// Forgets the edit history (a retry starts from the restored input).
   void Reset() {
