@@ -6,8 +6,9 @@
 //   * the faces stay within the Hausdorff budget of the input surface, both ways
 //     (DeviationAround: the edited faces to the input, and the input's samples (sampling:
 //     its sharp edges, optionally its whole surface thinned) to the edited faces); the
-//     samples on creases (edges sharper than opt.creaseDeg) are held to the much smaller
-//     crease budget, so that an edit cannot cut a crease;
+//     samples on crease lines (crease_lines.h: at least opt.creaseMinEdges connected edges
+//     sharper than opt.creaseDeg) are held to the much smaller crease budget, so that an
+//     edit cannot cut a crease;
 //   * no protected (frozen) vertex sees one of its faces change.
 // GuardedEdit is the scope of one edit: it remembers the journal checkpoint and the angle
 // before, and Accept() keeps or rolls back. Costs O(the edit's 2-ring) per check.
