@@ -78,14 +78,14 @@ class AutomaticReduction {
       r.irregularBefore = rep.irregularBefore;
       r.boundaryIrregularBefore = rep.boundaryIrregularBefore;
       r.budgetRetries = attempt;
-      Edit(r);
+      r.hausdorffPercent = -1;
+      Edit(r);  // sets r.hausdorffPercent when the final relaxation measured the result
       if (r.interrupted) {
         state_.RestoreSnapshot();
         r.result = Result::Fail("interrupted: the mesh is unchanged");
         return r;
       }
-      state_.ReleaseSweepState();
-      r.hausdorffPercent = HausdorffPercent(m_, original_);
+      if (r.hausdorffPercent < 0) r.hausdorffPercent = HausdorffPercent(m_, original_);
       // the independent check of the tests samples more densely than HausdorffPercent: keep
       // a small margin below the budget
       const bool within = r.hausdorffPercent <= kVerifyMargin * opt_.hausdorffBudgetPercent;
@@ -177,8 +177,14 @@ class AutomaticReduction {
     if (rep.interrupted) return;
     // A stage after the sweeps (e.g. on the boundary) goes here: it runs even when the time
     // limit stopped the editing only if it is cheap; the final relaxation always does.
-    if (!opt_.progress || opt_.progress(90, "Relaxing")) FinalRelax();
-    else rep.interrupted = true;
+    if (opt_.progress && !opt_.progress(90, "Relaxing")) {
+      rep.interrupted = true;
+      return;
+    }
+    // the sweeps' stamps are not read past this point: give them back before the final
+    // relaxation allocates its arrays and the measurement its grid (the run's memory peak)
+    state_.ReleaseSweepState();
+    rep.hausdorffPercent = FinalRelax();
   }
 
   /// One pass over the irregular vertices: local cancellations; with travel > 0 also pair
@@ -314,8 +320,11 @@ class AutomaticReduction {
   /// average and can squeeze a few triangles next to the remaining irregular vertices), then
   /// local sweeps, kept only if they keep the budget and the smallest angle (above the bound,
   /// or as it was). Not journaled: the whole-run undo restores the snapshot.
-  void FinalRelax() {
+  /// Returns the final positions' HausdorffPercent when it measured them (the sweeps kept),
+  /// -1 otherwise: Run measures only then, as each measurement costs a grid over the mesh.
+  double FinalRelax() {
     std::vector<int> all;
+    all.reserve(size_t(std::max(0, m_.vn)));
     for (size_t i = 0; i < m_.vert.size(); ++i)
       if (ed_.IsLive(int(i)) && !state_.Frozen(int(i))) all.push_back(int(i));
     // relaxing the vertices of crease lines would round them (issue 14: creases within 0.1%):
@@ -336,11 +345,14 @@ class AutomaticReduction {
       }
     }
     std::vector<CoordType> beforeSweeps;
+    beforeSweeps.reserve(all.size());
     for (int v : all) beforeSweeps.push_back(ed_.V(v)->P());
     const double angleBeforeSweeps = MeasureShape(m_).minAngleDeg;
     RelaxOptions lo;
     lo.iterations = opt_.finalLocalSweeps;
     LocalRelax(m_, all, &original_, lo, &crease);
+    std::vector<char>().swap(crease);
+    ReleaseFreedMemory();  // what the relaxation freed, before the measurement's grid
     for (auto& f : m_.face)
       if (!f.IsD()) f.N() = vcg::TriangleNormal(f).Normalize();
     // The sweeps are not checked vertex by vertex against the Hausdorff budget (sharp creases
@@ -350,13 +362,14 @@ class AutomaticReduction {
     // bound (or under what it was, if it was under the bound already).
     const bool angleDropped =
         MeasureShape(m_).minAngleDeg < std::min(opt_.minAngleDeg, angleBeforeSweeps) - 1e-9;
-    if (opt_.finalLocalSweeps > 0 &&
-        (angleDropped || HausdorffPercent(m_, original_) > opt_.hausdorffBudgetPercent)) {
-      for (size_t i = 0; i < all.size(); ++i) ed_.V(all[i])->P() = beforeSweeps[i];
-      for (auto& f : m_.face)
-        if (!f.IsD()) f.N() = vcg::TriangleNormal(f).Normalize();
-      sweepsKept_ = false;
-    }
+    if (opt_.finalLocalSweeps <= 0) return -1;
+    const double measured = angleDropped ? -1 : HausdorffPercent(m_, original_);
+    if (measured >= 0 && measured <= opt_.hausdorffBudgetPercent) return measured;
+    for (size_t i = 0; i < all.size(); ++i) ed_.V(all[i])->P() = beforeSweeps[i];
+    for (auto& f : m_.face)
+      if (!f.IsD()) f.N() = vcg::TriangleNormal(f).Normalize();
+    sweepsKept_ = false;
+    return -1;
   }
 
   MeshType& m_;

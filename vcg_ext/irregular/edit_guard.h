@@ -2,7 +2,8 @@
 // edit is relaxed locally (RelaxAround) and kept only if, around it:
 //   * no triangle has an angle under the bound (unless one already had before the edit): this
 //     is what keeps the irregular vertices the surface needs (a v5 on an ear tip cannot be
-//     cancelled without squeezing the triangles there);
+//     cancelled without squeezing the triangles there); a triangle with a vertex on a crease
+//     line has a bound lower by opt.creaseAngleSlackDeg, as relaxation never moves that vertex;
 //   * the faces stay within the Hausdorff budget of the input surface, both ways
 //     (DeviationAround: the edited faces to the input, and the input's samples (sampling:
 //     its sharp edges, optionally its whole surface thinned) to the edited faces); the
@@ -83,7 +84,11 @@ class EditGuard {
     // moved curvature into a regular stretch of boundary without cancelling any there.
     if (state_.BoundaryIrregular() + state_.BoundaryDelta(touched) > state_.BoundaryLimit())
       return GuardVerdict::Boundary;
-    if (MinAngleAround(touched) < std::min(opt_.minAngleDeg, angleBefore)) return GuardVerdict::Angle;
+    double atCrease = 180;
+    const double elsewhere = MinAngleAround(touched, &atCrease);
+    if (elsewhere < std::min(opt_.minAngleDeg, angleBefore) ||
+        atCrease < std::min(opt_.minAngleDeg - opt_.creaseAngleSlackDeg, angleBefore))
+      return GuardVerdict::Angle;
     double crease = 0;
     if (DeviationAround(touched, &crease) > budget_ || crease > creaseBudget_) return GuardVerdict::Hausdorff;
     return GuardVerdict::Kept;
@@ -107,15 +112,30 @@ class EditGuard {
     LocalRelax(m_, movable, &original_, ro, crease_);  // crease vertices stay: moving them rounds the crease
   }
 
-  /// Smallest angle (degrees) of the faces around the 2-ring of the seeds.
-  double MinAngleAround(const std::vector<int>& seeds) {
+  /// Smallest angle (degrees) of the faces around the 2-ring of the seeds. With atCrease, the
+  /// faces with a vertex on a crease line count there instead (*atCrease: their smallest angle,
+  /// left as it was when there is none).
+  double MinAngleAround(const std::vector<int>& seeds, double* atCrease = nullptr) {
     std::vector<int> live;
     for (int v : seeds)
       if (ed_.IsLive(v)) live.push_back(v);
     double mn = 180;
     for (int v : KRing(m_, live, 2))
-      for (auto& c : ed_.Star(v).corners) mn = std::min(mn, MinAngle(c.f));
+      for (auto& c : ed_.Star(v).corners) {
+        double& into = atCrease && OnCreaseLine(c.f) ? *atCrease : mn;
+        into = std::min(into, MinAngle(c.f));
+      }
     return mn;
+  }
+
+  /// Has f a vertex on one of the input's crease lines (vertices created since are not)?
+  bool OnCreaseLine(const FaceType* f) const {
+    if (!crease_) return false;
+    for (int z = 0; z < 3; ++z) {
+      const size_t i = size_t(f->cV(z) - &m_.vert[0]);
+      if (i < crease_->size() && (*crease_)[i]) return true;
+    }
+    return false;
   }
 
   static double MinAngle(const FaceType* f) {

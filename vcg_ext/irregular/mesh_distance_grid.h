@@ -2,15 +2,18 @@
 //
 // HausdorffPercent (quality.h) measures the input's samples against the edited mesh. It used to
 // build a SurfaceProjector of the edited mesh: a second copy of the mesh plus a vcg grid of up
-// to 8M cells (~200 MB at a million faces, next to everything else the run holds). This keeps
-// the live faces as three 32-bit vertex indices, the vertices as float positions, and a sparse
-// uniform grid stored as sorted arrays: the occupied cells' keys, an offset per cell and the
-// faces of each cell (a face is in every cell its box overlaps). Cells are two mean edge lengths
-// wide, so a point near the surface looks at a cell or a few of its neighbours (those nearer
-// than the best distance so far). About 35 bytes per face. Cells one edge wide hold fewer faces
-// but a face lies in more of them: bunny00 subdivided twice (1.2M faces), 68 MB (57 bytes a
-// face) and 5.5 s for the input's samples, against 42 MB and 8.5 s with two: the grid is built
-// at the end of a reduction, next to everything else the run holds, where memory counts more.
+// to 8M cells (~200 MB at a million faces, next to everything else the run holds). This copies
+// nothing of the mesh: it reads the faces' corners from the mesh itself (converted to float
+// when a face is measured), and keeps a sparse uniform grid stored as sorted arrays: the
+// occupied cells' keys, an offset per cell and the faces of each cell (indices into m.face; a
+// face is in every cell its box overlaps). Cells are two mean edge lengths wide, so a point near
+// the surface looks at a cell or a few of its neighbours (those nearer than the best distance
+// so far). About 17 bytes per face. Cells one edge wide hold fewer faces but a face lies in
+// more of them: bunny00 subdivided twice (1.2M faces), 68 MB (57 bytes a face, with copies of
+// the corners then) and 5.5 s for the input's samples, against 42 MB and 8.5 s with two: the
+// grid is built at the end of a reduction, next to everything else the run holds, where memory
+// counts more. Copying the corners (three vertex indices a face, a float position a vertex)
+// cost 18 more bytes a face.
 //
 // The distance of a point to a face is vcg's (vcg::face::PointDistanceBase, the test vcg's grid
 // search runs), on the face's corners converted to float and its normal computed as vcg's
@@ -18,7 +21,7 @@
 // SurfaceProjector::Closest on a copy of the same mesh returns (test_memory.cpp checks it).
 //
 // Preconditions: |cell coordinates| < 2^20 (a mesh less than a million mean edge lengths
-// across). Costs: O(F log F) to build, O(faces in the cells near p) per query; a point farther
+// across); the mesh stays as it is while the grid lives (it reads the mesh's faces). Costs: O(F log F) to build, O(faces in the cells near p) per query; a point farther
 // than 8 cells from every face scans the list of occupied cells.
 #pragma once
 
@@ -46,10 +49,10 @@ struct Corner {
 struct FaceView {
   typedef float ScalarType;
   typedef vcg::Point3f CoordType;
-  const Corner* v[3];
+  Corner v[3];
   vcg::Point3f n;
-  const vcg::Point3f& cP(int i) const { return v[i]->p; }
-  const Corner* cV(int i) const { return v[i]; }
+  const vcg::Point3f& cP(int i) const { return v[i].p; }
+  const Corner* cV(int i) const { return &v[i]; }
   const vcg::Point3f& cN() const { return n; }
   void GetBBox(vcg::Box3f& bb) const {
     bb.Set(cP(0));
@@ -63,22 +66,15 @@ template <class MeshType>
 class MeshDistanceGrid {
  public:
   /// Indexes the live faces of m.
-  explicit MeshDistanceGrid(const MeshType& m) {
-    // float corners, as SurfaceProjector's copy has them, in arrays of their own: a query
-    // reads 12 bytes per corner instead of the mesh's whole vertex
-    pos_.resize(m.vert.size());
-    for (size_t i = 0; i < m.vert.size(); ++i)
-      if (!m.vert[i].IsD()) diagBox_.Add(pos_[i].p = vcg::Point3f::Construct(m.vert[i].cP()));
+  explicit MeshDistanceGrid(const MeshType& m) : m_(m) {
+    for (const auto& v : m.vert)
+      if (!v.IsD()) diagBox_.Add(vcg::Point3f::Construct(v.cP()));
     double sum = 0;
     long edges = 0;
     for (const auto& f : m.face) {
       if (f.IsD()) continue;
-      Tri t;
-      for (int z = 0; z < 3; ++z) t.v[z] = uint32_t(vcg::tri::Index(m, f.cV(z)));
-      tri_.push_back(t);
       for (int z = 0; z < 3; ++z, ++edges) sum += double((f.cP(z) - f.cP((z + 1) % 3)).Norm());
     }
-    tri_.shrink_to_fit();
     cell_ = float(std::max(kCellEdges * (edges ? sum / double(edges) : 1.0), 1e-12));
     // the occupied cells: every cell a face's box overlaps, gathered in an open-addressing set
     // (8 bytes a slot, at most 70% full) rather than as one key per face and cell, sorted
@@ -92,8 +88,8 @@ class MeshDistanceGrid {
           if (table[h] == kEmpty) return table[h] = k, true;
         }
       };
-      for (uint32_t t = 0; t < tri_.size(); ++t)
-        ForCells(Box(t), [&](uint64_t k) {
+      for (uint32_t t = 0; t < m.face.size(); ++t)
+        if (!m.face[t].IsD()) ForCells(Box(t), [&](uint64_t k) {
           if (!insert(set, k)) return;
           if (10 * ++used <= 7 * set.size()) return;
           std::vector<uint64_t> bigger(2 * set.size(), kEmpty);
@@ -108,18 +104,19 @@ class MeshDistanceGrid {
     std::sort(cellKeys_.begin(), cellKeys_.end());
     // faces per cell (counts, then offsets), then the faces themselves
     cellStart_.assign(cellKeys_.size() + 1, 0);
-    for (uint32_t t = 0; t < tri_.size(); ++t) ForCells(Box(t), [&](uint64_t k) { ++cellStart_[CellOf(k) + 1]; });
+    for (uint32_t t = 0; t < m.face.size(); ++t)
+      if (!m.face[t].IsD()) ForCells(Box(t), [&](uint64_t k) { ++cellStart_[CellOf(k) + 1]; });
     for (size_t c = 0; c < cellKeys_.size(); ++c) cellStart_[c + 1] += cellStart_[c];
     cellFaces_.resize(cellStart_.back());
     std::vector<uint32_t> fill(cellStart_.begin(), cellStart_.end() - 1);
-    for (uint32_t t = 0; t < tri_.size(); ++t) ForCells(Box(t), [&](uint64_t k) { cellFaces_[fill[CellOf(k)]++] = t; });
-    lastQuery_.assign(tri_.size(), 0);
+    for (uint32_t t = 0; t < m.face.size(); ++t)
+      if (!m.face[t].IsD()) ForCells(Box(t), [&](uint64_t k) { cellFaces_[fill[CellOf(k)]++] = t; });
+    lastQuery_.assign(m.face.size(), 0);
   }
 
   /// Bytes held, for memory accounting.
   size_t Bytes() const {
-    return pos_.capacity() * sizeof(Corner) + tri_.capacity() * sizeof(Tri) + cellKeys_.capacity() * 8 +
-           (cellStart_.capacity() + cellFaces_.capacity() + lastQuery_.capacity()) * 4;
+    return cellKeys_.capacity() * 8 + (cellStart_.capacity() + cellFaces_.capacity() + lastQuery_.capacity()) * 4;
   }
 
   /// The bounding-box diagonal of the live vertices (as a SurfaceProjector of m reports it).
@@ -219,9 +216,11 @@ class MeshDistanceGrid {
   }
   size_t CellOf(uint64_t key) const { return size_t(std::lower_bound(cellKeys_.begin(), cellKeys_.end(), key) - cellKeys_.begin()); }
 
+  /// Face t's corners in float, as SurfaceProjector's copy has them.
+  vcg::Point3f Corner3f(uint32_t t, int z) const { return vcg::Point3f::Construct(m_.face[t].cP(z)); }
   vcg::Box3f Box(uint32_t t) const {
     vcg::Box3f b;
-    for (int z = 0; z < 3; ++z) b.Add(pos_[tri_[t].v[z]].p);
+    for (int z = 0; z < 3; ++z) b.Add(Corner3f(t, z));
     return b;
   }
   /// Calls fn with the key of every cell b overlaps; remembers the range of the occupied cells.
@@ -243,7 +242,7 @@ class MeshDistanceGrid {
     if (lastQuery_[t] == query_) return;  // a face in several cells is measured once
     lastQuery_[t] = query_;
     FaceView view;
-    for (int z = 0; z < 3; ++z) view.v[z] = &pos_[tri_[t].v[z]];
+    for (int z = 0; z < 3; ++z) view.v[z].p = Corner3f(t, z);
     // UpdateNormal::PerFaceNormalized: the cross product of the edges from corner 0, normalized
     view.n = (view.cP(1) - view.cP(0)) ^ (view.cP(2) - view.cP(0));
     view.n.Normalize();
@@ -251,21 +250,17 @@ class MeshDistanceGrid {
     vcg::face::PointDistanceBase(view, p, best, q);
   }
 
-  struct Tri {
-    uint32_t v[3];
-  };
+  const MeshType& m_;
   float cell_ = 1;
   vcg::Box3f diagBox_;
   int64_t cellMin_[3] = {std::numeric_limits<int64_t>::max(), std::numeric_limits<int64_t>::max(),
                          std::numeric_limits<int64_t>::max()};
   int64_t cellMax_[3] = {std::numeric_limits<int64_t>::min(), std::numeric_limits<int64_t>::min(),
                          std::numeric_limits<int64_t>::min()};  ///< range of the occupied cells
-  std::vector<Corner> pos_;            ///< per vertex index: its position in float
-  std::vector<Tri> tri_;               ///< the live faces: their corners' vertex indices
   std::vector<uint64_t> cellKeys_;     ///< occupied cells, sorted
   std::vector<uint32_t> cellStart_;    ///< per cell: where its faces start in cellFaces_ (one more at the end)
-  std::vector<uint32_t> cellFaces_;    ///< indices into tri_, cell by cell
-  std::vector<uint32_t> lastQuery_;    ///< per face: the last query that measured it
+  std::vector<uint32_t> cellFaces_;    ///< indices into m.face (live faces), cell by cell
+  std::vector<uint32_t> lastQuery_;    ///< per face index: the last query that measured it
   uint32_t query_ = 0;
 };
 
