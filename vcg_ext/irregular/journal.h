@@ -76,6 +76,25 @@ class EditJournal {
     size_t stamp, idx;
     VertexType v;
   };
+  /// The six logs of records: what the journal keeps since its last commit, and what a Replay
+  /// carries.
+  struct Logs {
+    std::vector<FaceRecord> face;
+    std::vector<VertexRecord> vert;
+    std::vector<FaceAttrRecord> faceAttr;
+    std::vector<VertexAttrRecord> vertAttr;
+    std::vector<WholeFace> faceWhole;
+    std::vector<WholeVertex> vertWhole;
+    /// Calls fn on each of the six vectors.
+    template <class Fn>
+    void ForEach(Fn fn) {
+      fn(face), fn(vert), fn(faceAttr), fn(vertAttr), fn(faceWhole), fn(vertWhole);
+    }
+    template <class Fn>
+    void ForEach(Fn fn) const {
+      fn(face), fn(vert), fn(faceAttr), fn(vertAttr), fn(faceWhole), fn(vertWhole);
+    }
+  };
 
  public:
 
@@ -91,12 +110,12 @@ class EditJournal {
 
   Checkpoint Mark() const {
     Checkpoint c;
-    c.faceLog = faceLog_.size();
-    c.vertLog = vertLog_.size();
-    c.faceAttrLog = faceAttrLog_.size();
-    c.vertAttrLog = vertAttrLog_.size();
-    c.faceWhole = faceWhole_.size();
-    c.vertWhole = vertWhole_.size();
+    c.faceLog = log_.face.size();
+    c.vertLog = log_.vert.size();
+    c.faceAttrLog = log_.faceAttr.size();
+    c.vertAttrLog = log_.vertAttr.size();
+    c.faceWhole = log_.faceWhole.size();
+    c.vertWhole = log_.vertWhole.size();
     c.faces = m_.face.size();
     c.verts = m_.vert.size();
     c.fn = m_.fn;
@@ -107,15 +126,15 @@ class EditJournal {
   /// Saves face f (vertex refs, FF, VF, flags, normal; wedge texture coordinates, colour and
   /// quality if the mesh has them) before it is changed.
   void SaveFace(FaceType* f) {
-    faceLog_.push_back(RecordOf(f));
-    SaveFaceAttributes(faceLog_.back().idx, *f);
+    log_.face.push_back(RecordOf(f));
+    SaveFaceAttributes(log_.face.back().idx, *f);
   }
 
   /// Saves vertex v (position, VF, flags; colour, quality and texture coordinate if the mesh
   /// has them) before it is changed.
   void SaveVertex(VertexType* v) {
-    vertLog_.push_back(RecordOf(v));
-    SaveVertexAttributes(vertLog_.back().idx, *v);
+    log_.vert.push_back(RecordOf(v));
+    SaveVertexAttributes(log_.vert.back().idx, *v);
   }
 
   /// Saves face f like SaveFace, plus a copy of the whole element (every static component,
@@ -123,24 +142,24 @@ class EditJournal {
   /// (compaction, edit_session.h). Rollback restores the copy in its chronological place.
   void SaveWholeFace(FaceType* f) {
     SaveFace(f);
-    faceWhole_.push_back(WholeFace{faceLog_.size(), faceLog_.back().idx, *f});
+    log_.faceWhole.push_back(WholeFace{log_.face.size(), log_.face.back().idx, *f});
   }
   /// The same for vertex v.
   void SaveWholeVertex(VertexType* v) {
     SaveVertex(v);
-    vertWhole_.push_back(WholeVertex{vertLog_.size(), vertLog_.back().idx, *v});
+    log_.vertWhole.push_back(WholeVertex{log_.vert.size(), log_.vert.back().idx, *v});
   }
 
   /// The indices of the faces / vertices saved since checkpoint c (with repetitions), e.g. to
   /// find the elements an edit deleted without a pass over the mesh. O(logged).
   std::vector<size_t> FacesSavedSince(const Checkpoint& c) const {
     std::vector<size_t> out;
-    for (size_t k = c.faceLog; k < faceLog_.size(); ++k) out.push_back(faceLog_[k].idx);
+    for (size_t k = c.faceLog; k < log_.face.size(); ++k) out.push_back(log_.face[k].idx);
     return out;
   }
   std::vector<size_t> VerticesSavedSince(const Checkpoint& c) const {
     std::vector<size_t> out;
-    for (size_t k = c.vertLog; k < vertLog_.size(); ++k) out.push_back(vertLog_[k].idx);
+    for (size_t k = c.vertLog; k < log_.vert.size(); ++k) out.push_back(log_.vert[k].idx);
     return out;
   }
 
@@ -152,13 +171,8 @@ class EditJournal {
     size_t faces0 = 0, verts0 = 0;  ///< the vectors' sizes at the checkpoint (checked by Apply)
     size_t faces = 0, verts = 0;    ///< and after the edit
     int fn = 0, vn = 0;
-    std::vector<FaceRecord> faceRec;
-    std::vector<WholeFace> faceWhole;
-    std::vector<FaceAttrRecord> faceAttr;
-    std::vector<VertexRecord> vertRec;
-    std::vector<WholeVertex> vertWhole;
-    std::vector<VertexAttrRecord> vertAttr;
-    bool Empty() const { return faceRec.empty() && vertRec.empty() && faces == faces0 && verts == verts0; }
+    Logs logs;  ///< the final state of each element (regular and whole records; stamps unused)
+    bool Empty() const { return logs.face.empty() && logs.vert.empty() && faces == faces0 && verts == verts0; }
   };
 
   /// The state now of every element saved since c or created since c (those still inside the
@@ -170,15 +184,15 @@ class EditJournal {
     r.fn = m_.fn, r.vn = m_.vn;
     for (size_t i : Changed(FacesSavedSince(c), c.faces, m_.face.size())) {
       const FaceType* f = &m_.face[i];
-      r.faceRec.push_back(RecordOf(f));
-      r.faceWhole.push_back(WholeFace{0, i, *f});
-      if (HasFaceAttributes()) r.faceAttr.push_back(AttributesOf(i, *f));
+      r.logs.face.push_back(RecordOf(f));
+      r.logs.faceWhole.push_back(WholeFace{0, i, *f});
+      if (HasFaceAttributes()) r.logs.faceAttr.push_back(AttributesOf(i, *f));
     }
     for (size_t i : Changed(VerticesSavedSince(c), c.verts, m_.vert.size())) {
       const VertexType* v = &m_.vert[i];
-      r.vertRec.push_back(RecordOf(v));
-      r.vertWhole.push_back(WholeVertex{0, i, *v});
-      if (HasVertexAttributes()) r.vertAttr.push_back(AttributesOf(i, *v));
+      r.logs.vert.push_back(RecordOf(v));
+      r.logs.vertWhole.push_back(WholeVertex{0, i, *v});
+      if (HasVertexAttributes()) r.logs.vertAttr.push_back(AttributesOf(i, *v));
     }
     return r;
   }
@@ -191,22 +205,22 @@ class EditJournal {
     if (m_.face.size() != r.faces0 || m_.vert.size() != r.verts0) return false;
     assert(r.faces <= m_.face.capacity() && r.verts <= m_.vert.capacity());
     // save what is overwritten and what is truncated, for the rollback
-    for (const auto& w : r.faceWhole)
+    for (const auto& w : r.logs.faceWhole)
       if (w.idx < m_.face.size()) SaveWholeFace(&m_.face[w.idx]);
     for (size_t i = r.faces; i < m_.face.size(); ++i) SaveWholeFace(&m_.face[i]);
-    for (const auto& w : r.vertWhole)
+    for (const auto& w : r.logs.vertWhole)
       if (w.idx < m_.vert.size()) SaveWholeVertex(&m_.vert[w.idx]);
     for (size_t i = r.verts; i < m_.vert.size(); ++i) SaveWholeVertex(&m_.vert[i]);
     m_.face.resize(r.faces);
     m_.vert.resize(r.verts);
     // whole copies first, then the records (the adjacency, which may be optional components
     // outside the element's bytes), then the attributes: the order of RollbackTo
-    for (const auto& w : r.faceWhole) RestoreWhole(w);
-    for (const auto& w : r.vertWhole) RestoreWhole(w);
-    for (const auto& x : r.faceRec) Restore(x);
-    for (const auto& x : r.vertRec) Restore(x);
-    for (const auto& x : r.faceAttr) Restore(x);
-    for (const auto& x : r.vertAttr) Restore(x);
+    for (const auto& w : r.logs.faceWhole) RestoreWhole(w);
+    for (const auto& w : r.logs.vertWhole) RestoreWhole(w);
+    for (const auto& x : r.logs.face) Restore(x);
+    for (const auto& x : r.logs.vert) Restore(x);
+    for (const auto& x : r.logs.faceAttr) Restore(x);
+    for (const auto& x : r.logs.vertAttr) Restore(x);
     m_.fn = r.fn;
     m_.vn = r.vn;
     return true;
@@ -217,18 +231,18 @@ class EditJournal {
   /// holes): they grow back first, within their capacity (asserted: growing never reallocates,
   /// so every pointer stays valid), then the records are restored newest first.
   void RollbackTo(const Checkpoint& c) {
-    GrowBack(m_.face, c.faces, c.faceLog, faceLog_);
-    GrowBack(m_.vert, c.verts, c.vertLog, vertLog_);
-    RestoreInterleaved(faceLog_, c.faceLog, faceWhole_, c.faceWhole);
-    RestoreInterleaved(vertLog_, c.vertLog, vertWhole_, c.vertWhole);
-    for (size_t k = faceAttrLog_.size(); k-- > c.faceAttrLog;) Restore(faceAttrLog_[k]);
-    for (size_t k = vertAttrLog_.size(); k-- > c.vertAttrLog;) Restore(vertAttrLog_[k]);
-    faceLog_.resize(c.faceLog);
-    vertLog_.resize(c.vertLog);
-    faceAttrLog_.resize(c.faceAttrLog);
-    vertAttrLog_.resize(c.vertAttrLog);
-    faceWhole_.erase(faceWhole_.begin() + long(c.faceWhole), faceWhole_.end());
-    vertWhole_.erase(vertWhole_.begin() + long(c.vertWhole), vertWhole_.end());
+    GrowBack(m_.face, c.faces, c.faceLog, log_.face);
+    GrowBack(m_.vert, c.verts, c.vertLog, log_.vert);
+    RestoreInterleaved(log_.face, c.faceLog, log_.faceWhole, c.faceWhole);
+    RestoreInterleaved(log_.vert, c.vertLog, log_.vertWhole, c.vertWhole);
+    for (size_t k = log_.faceAttr.size(); k-- > c.faceAttrLog;) Restore(log_.faceAttr[k]);
+    for (size_t k = log_.vertAttr.size(); k-- > c.vertAttrLog;) Restore(log_.vertAttr[k]);
+    log_.face.resize(c.faceLog);
+    log_.vert.resize(c.vertLog);
+    log_.faceAttr.resize(c.faceAttrLog);
+    log_.vertAttr.resize(c.vertAttrLog);
+    log_.faceWhole.erase(log_.faceWhole.begin() + long(c.faceWhole), log_.faceWhole.end());
+    log_.vertWhole.erase(log_.vertWhole.begin() + long(c.vertWhole), log_.vertWhole.end());
     // Truncating never reallocates, so every pointer into the kept part stays valid.
     if (m_.face.size() > c.faces) m_.face.resize(c.faces);
     if (m_.vert.size() > c.verts) m_.vert.resize(c.verts);
@@ -241,21 +255,16 @@ class EditJournal {
   /// between edits is bounded by that, not by the longest edit so far; smaller ones keep their
   /// capacity for the next edit.
   void Commit() {
-    Forget(faceLog_);
-    Forget(vertLog_);
-    Forget(faceAttrLog_);
-    Forget(vertAttrLog_);
-    Forget(faceWhole_);
-    Forget(vertWhole_);
+    log_.ForEach([](auto& log) { Forget(log); });
   }
 
-  size_t LoggedFaces() const { return faceLog_.size(); }
-  size_t LoggedVertices() const { return vertLog_.size(); }
+  size_t LoggedFaces() const { return log_.face.size(); }
+  size_t LoggedVertices() const { return log_.vert.size(); }
   /// Bytes the logs hold (their capacities), for memory accounting.
   size_t Bytes() const {
-    return faceLog_.capacity() * sizeof(FaceRecord) + vertLog_.capacity() * sizeof(VertexRecord) +
-           faceAttrLog_.capacity() * sizeof(FaceAttrRecord) + vertAttrLog_.capacity() * sizeof(VertexAttrRecord) +
-           faceWhole_.capacity() * sizeof(WholeFace) + vertWhole_.capacity() * sizeof(WholeVertex);
+    size_t bytes = 0;
+    log_.ForEach([&](const auto& log) { bytes += log.capacity() * sizeof(log[0]); });
+    return bytes;
   }
   /// Records per log kept allocated after a Commit (a few edits' worth).
   static constexpr size_t kRetainedRecords = 4096;
@@ -365,10 +374,10 @@ class EditJournal {
     return r;
   }
   void SaveFaceAttributes(size_t idx, FaceType& f) {
-    if (HasFaceAttributes()) faceAttrLog_.push_back(AttributesOf(idx, f));
+    if (HasFaceAttributes()) log_.faceAttr.push_back(AttributesOf(idx, f));
   }
   void SaveVertexAttributes(size_t idx, VertexType& v) {
-    if (HasVertexAttributes()) vertAttrLog_.push_back(AttributesOf(idx, v));
+    if (HasVertexAttributes()) log_.vertAttr.push_back(AttributesOf(idx, v));
   }
   void Restore(const FaceAttrRecord& r) {
     FaceType& f = m_.face[r.idx];
@@ -409,12 +418,7 @@ class EditJournal {
   }
 
   MeshType& m_;
-  std::vector<FaceRecord> faceLog_;
-  std::vector<VertexRecord> vertLog_;
-  std::vector<FaceAttrRecord> faceAttrLog_;
-  std::vector<VertexAttrRecord> vertAttrLog_;
-  std::vector<WholeFace> faceWhole_;
-  std::vector<WholeVertex> vertWhole_;
+  Logs log_;
 };
 
 }  // namespace irregular
