@@ -21,8 +21,9 @@
 // SurfaceProjector::Closest on a copy of the same mesh returns (test_memory.cpp checks it).
 //
 // Preconditions: |cell coordinates| < 2^20 (a mesh less than a million mean edge lengths
-// across); the mesh stays as it is while the grid lives (it reads the mesh's faces). Costs: O(F log F) to build, O(faces in the cells near p) per query; a point farther
-// than 8 cells from every face scans the list of occupied cells.
+// across); the mesh stays as it is while the grid lives (it reads the mesh's faces). Costs:
+// O(F log F) to build, O(faces in the cells near p) per query; a point farther than 8 cells from
+// every face scans the list of occupied cells.
 #pragma once
 
 #include <algorithm>
