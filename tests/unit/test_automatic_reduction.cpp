@@ -651,6 +651,36 @@ double FarthestPercent(TMesh& m, const std::vector<vcg::Point3f>& pts, double di
 }
 }  // namespace
 
+namespace {
+
+/// One Automatic Reduction of fandisk remeshed to 6K vertices with `opt`, the mesh invariants
+/// checked after it: the report, how far the result leaves the input's creases (samples on edges
+/// sharper than 60 degrees; percent of the diagonal) and its triangles' shape.
+struct FandiskRun {
+  ReductionReport report;
+  double creasePercent = 0;
+  double inputMinAngle = 0;  ///< smallest angle of the remeshed input
+  ShapeMeasures after;
+};
+void ReduceFandisk6K(const ReductionOptions& opt, FandiskRun& run) {
+  TMesh m;
+  std::unique_ptr<SurfaceProjector> raw;
+  ASSERT_TRUE(RemeshedCorpus(m, "fandisk.off", 6000, &raw)) << "corpus mesh missing (run scripts/setup.sh)";
+  SurfaceProjector input(m);
+  const std::vector<vcg::Point3f> samples = CreaseSamples(m, 60.0);
+  ASSERT_GT(samples.size(), 500u);
+  run.inputMinAngle = MeasureShape(m).minAngleDeg;
+  AutomaticReduction<TMesh> ar(m, input, opt);
+  run.report = ar.Run();
+  ASSERT_TRUE(run.report) << run.report.result.reason;
+  Result inv = CheckInvariants(m);
+  ASSERT_TRUE(inv.ok) << inv.reason;
+  run.creasePercent = FarthestPercent(m, samples, double(input.Diagonal()));
+  run.after = MeasureShape(m);
+}
+
+}  // namespace
+
 // Creases stay sharp (issue 14): on fandisk remeshed to 6K vertices, every sample of the input's
 // creases (edges sharper than ReductionOptions::creaseDeg, 60 degrees) stays within the crease
 // budget of the result, up to the final relaxation's rounding: the vertices on creases never
@@ -660,23 +690,15 @@ TEST(AutomaticReduction, CreasesStaySharp) {
   double percent[2] = {0, 0};
   int left[2] = {0, 0};
   for (int protect : {1, 0}) {
-    TMesh m;
-    std::unique_ptr<SurfaceProjector> raw;
-    ASSERT_TRUE(RemeshedCorpus(m, "fandisk.off", 6000, &raw)) << "corpus mesh missing (run scripts/setup.sh)";
-    SurfaceProjector input(m);
-    const std::vector<vcg::Point3f> samples = CreaseSamples(m, 60.0);
-    ASSERT_GT(samples.size(), 500u);
     ReductionOptions opt;
     if (!protect) opt.creaseDeg = 0;
-    AutomaticReduction<TMesh> ar(m, input, opt);
-    ReductionReport r = ar.Run();
-    ASSERT_TRUE(r) << r.result.reason;
-    Result inv = CheckInvariants(m);
-    ASSERT_TRUE(inv.ok) << inv.reason;
-    percent[protect] = FarthestPercent(m, samples, double(input.Diagonal()));
-    left[protect] = r.irregularAfter;
+    FandiskRun run;
+    ASSERT_NO_FATAL_FAILURE(ReduceFandisk6K(opt, run));
+    percent[protect] = run.creasePercent;
+    left[protect] = run.report.irregularAfter;
     std::printf("fandisk at 6K, creases %s: %d -> %d irregular, input creases within %.4f%% of the diagonal\n",
-                protect ? "protected" : "not protected", r.irregularBefore, r.irregularAfter, percent[protect]);
+                protect ? "protected" : "not protected", run.report.irregularBefore, run.report.irregularAfter,
+                percent[protect]);
   }
   const double budget = ReductionOptions().creaseBudgetPercent;
   EXPECT_LE(percent[1], 2 * budget);
@@ -691,27 +713,18 @@ TEST(AutomaticReduction, CreasesStaySharp) {
 TEST(AutomaticReduction, CreaseAngleSlackPaysAtCreasesOnly) {
   int left[2] = {0, 0};
   for (int slack : {0, 1}) {
-    TMesh m;
-    std::unique_ptr<SurfaceProjector> raw;
-    ASSERT_TRUE(RemeshedCorpus(m, "fandisk.off", 6000, &raw)) << "corpus mesh missing (run scripts/setup.sh)";
-    SurfaceProjector input(m);
-    const std::vector<vcg::Point3f> samples = CreaseSamples(m, 60.0);
-    const double inputMinAngle = MeasureShape(m).minAngleDeg;
     ReductionOptions opt;
     opt.creaseAngleSlackDeg = slack ? 4 : 0;
-    AutomaticReduction<TMesh> ar(m, input, opt);
-    ReductionReport r = ar.Run();
-    ASSERT_TRUE(r) << r.result.reason;
-    Result inv = CheckInvariants(m);
-    ASSERT_TRUE(inv.ok) << inv.reason;
-    left[slack] = r.irregularAfter;
-    const ShapeMeasures after = MeasureShape(m);
+    FandiskRun run;
+    ASSERT_NO_FATAL_FAILURE(ReduceFandisk6K(opt, run));
+    left[slack] = run.report.irregularAfter;
     std::printf("fandisk at 6K, crease angle slack %g: %d -> %d irregular, min angle %.2f (input %.2f), %.3f%% under 30\n",
-                opt.creaseAngleSlackDeg, r.irregularBefore, r.irregularAfter, after.minAngleDeg, inputMinAngle,
-                100 * after.shareBelow30);
-    EXPECT_GE(after.minAngleDeg, std::min(inputMinAngle, opt.minAngleDeg - opt.creaseAngleSlackDeg) - 1e-6);
-    EXPECT_LE(after.shareBelow30, 0.01);
-    EXPECT_LE(FarthestPercent(m, samples, double(input.Diagonal())), 2 * opt.creaseBudgetPercent);
+                opt.creaseAngleSlackDeg, run.report.irregularBefore, run.report.irregularAfter, run.after.minAngleDeg,
+                run.inputMinAngle, 100 * run.after.shareBelow30);
+    EXPECT_GE(run.after.minAngleDeg,
+              std::min(run.inputMinAngle, opt.minAngleDeg - opt.creaseAngleSlackDeg) - 1e-6);
+    EXPECT_LE(run.after.shareBelow30, 0.01);
+    EXPECT_LE(run.creasePercent, 2 * opt.creaseBudgetPercent);
   }
   EXPECT_LT(left[1], left[0]);
 }
