@@ -227,6 +227,7 @@ FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par
   out.SetInt("leftover_thin", rep.leftovers.thin);
   out.SetInt("leftover_no_partner", rep.leftovers.noPartner);
   out.SetInt("leftover_budget", rep.leftovers.budget);
+  out.SetInt("leftover_no_route", rep.leftovers.noRoute);
   out.SetInt("leftover_untried", rep.leftovers.untried);
   out.SetInt("leftover_boundary", rep.leftovers.boundary);
   out.SetInt("leftover_protected", rep.leftovers.protectedCount);

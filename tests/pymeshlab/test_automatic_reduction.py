@@ -109,6 +109,13 @@ def test_remeshed_knot_keeps_the_budget():
     assert fo.genus(t1) == 1
     assert out["remeshed_vertices"] > 4500 and out["remesh_hausdorff_percent"] <= 0.3
     assert fo.irregular_mask(t1).sum() < 0.01 * len(t1.vertices), fo.irregular_mask(t1).sum()
+    # every irregular vertex left has one reason; "no route" (tried, no cancellation found) is
+    # told apart from "untried"
+    reasons = sorted(k for k in out if k.startswith("leftover_") and k != "leftover_on_thin_parts")
+    assert reasons == sorted("leftover_" + r for r in (
+        "boundary", "protected", "caps", "saddles", "thin", "no_partner", "budget", "no_route", "untried"))
+    assert sum(out[k] for k in reasons) == out["irregular_after"] == fo.irregular_mask(t1).sum()
+    assert out["stop_reason"] == 0
 
 
 def test_genus_three_keeps_its_topology_and_stops_at_the_target():

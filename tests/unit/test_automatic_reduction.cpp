@@ -448,11 +448,17 @@ TEST_P(ReductionWithHoles, InteriorGoesIntoTheBoundaryNeverAddingBoundaryIrregul
     int sum = 0;
     for (int k = 0; k < kLeftoverReasons; ++k) sum += lo.counts[k];
     EXPECT_EQ(sum, lo.total);
-    EXPECT_EQ(lo.boundary + lo.protectedCount + lo.caps + lo.saddles + lo.thin + lo.noPartner + lo.budget + lo.untried,
+    EXPECT_EQ(lo.boundary + lo.protectedCount + lo.caps + lo.saddles + lo.thin + lo.noPartner + lo.budget + lo.noRoute +
+                  lo.untried,
               lo.total);
     for (const LeftoverVertex& x : lo.vertices) {
       ASSERT_GE(x.vertex, 0);
       ASSERT_LT(size_t(x.vertex), m.vert.size());  // indices of the compacted result
+      if (x.reason == LeftoverReason::NoRoute || x.reason == LeftoverReason::Untried) {
+        // both have a partner within reach and nothing undone around them
+        EXPECT_GE(x.partner, 0) << x.vertex;
+        EXPECT_EQ(x.undoneNearby, 0) << x.vertex;
+      }
       const VertexStar<TMesh> s = StarOf<TMesh>(&m.vert[size_t(x.vertex)]);
       EXPECT_NE(s.Valence(), RegularValenceOf(s)) << "vertex " << x.vertex << " is reported left but is regular";
     }

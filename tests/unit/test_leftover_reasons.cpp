@@ -50,7 +50,8 @@ void ExpectCountsAddUp(const LeftoverReport& r) {
   for (int k = 0; k < kLeftoverReasons; ++k) sum += r.counts[k];
   EXPECT_EQ(sum, r.total);
   EXPECT_EQ(r.total, int(r.vertices.size()));
-  EXPECT_EQ(r.boundary + r.protectedCount + r.caps + r.saddles + r.thin + r.noPartner + r.budget + r.untried, r.total);
+  EXPECT_EQ(r.boundary + r.protectedCount + r.caps + r.saddles + r.thin + r.noPartner + r.budget + r.noRoute + r.untried,
+            r.total);
 }
 }  // namespace
 
@@ -73,7 +74,8 @@ TEST(LeftoverReasons, TheTwelveV5OfASphereAreCaps) {
 
 // On a torus (radii 3 and 1) a quadruple on the inner equator: its two v7 are saddles; its two
 // v5 sit on negative curvature (no cap) and have a partner (the other pair, 3 steps away):
-// the one around which the driver reports undone edits is "budget", the other "untried".
+// the one around which the driver reports undone edits is "budget", the other "untried", or
+// "no route" once the driver reports that its strategies were tried there.
 // A quadruple across the top circle: a v7 is a saddle only on negative curvature, the rest
 // untried; with a travel bound of 2 edges (its pairs are 3 steps apart), "no partner" unless
 // curvature explains it.
@@ -113,10 +115,37 @@ TEST(LeftoverReasons, SaddlesBudgetUntriedAndNoPartnerOnATorus) {
   EXPECT_EQ(r.saddles, 3);
   EXPECT_EQ(r.budget, 1);
   EXPECT_EQ(r.untried, 4);
+  EXPECT_EQ(r.noRoute, 0);  // nothing says the strategies were tried
   for (auto& v : r.vertices) {
     EXPECT_GE(v.partner, 0);
     EXPECT_LE(v.partnerDistance, 4);
   }
+  // the driver reports that its strategies were tried from inner[2] and one top vertex (and
+  // from a saddle, which stays a saddle): those two are "no route", the other three untried
+  // ones stay "untried"
+  const int topUntried = [&] {
+    for (auto& v : r.vertices)
+      if (v.reason == LeftoverReason::Untried && std::find(top.begin(), top.end(), v.vertex) != top.end())
+        return v.vertex;
+    return -1;
+  }();
+  ASSERT_GE(topUntried, 0);
+  std::vector<char> tried(m.vert.size(), 0);
+  tried[size_t(inner[2])] = tried[size_t(topUntried)] = tried[size_t(inner[1])] = 1;
+  LeftoverOptions withTried = opt;
+  withTried.tried = &tried;
+  LeftoverReport rt = ExplainLeftovers(m, withTried);
+  ExpectCountsAddUp(rt);
+  std::map<int, LeftoverReason> whyTried = Reasons(rt);
+  EXPECT_EQ(whyTried[inner[2]], LeftoverReason::NoRoute);
+  EXPECT_EQ(whyTried[topUntried], LeftoverReason::NoRoute);
+  EXPECT_EQ(whyTried[inner[1]], LeftoverReason::Saddle);
+  EXPECT_EQ(whyTried[inner[0]], LeftoverReason::Budget);
+  EXPECT_EQ(rt.noRoute, 2);
+  EXPECT_EQ(rt.untried, 2);
+  EXPECT_EQ(rt.saddles, 3);
+  EXPECT_EQ(rt.budget, 1);
+  EXPECT_NE(rt.Summary().find("2 no route"), std::string::npos) << rt.Summary();
   LeftoverOptions near = opt;
   near.reach = 2;
   LeftoverReport rn = ExplainLeftovers(m, near, top);

@@ -198,9 +198,16 @@ class AutomaticReduction {
                                                 : "Moving pairs to cancel them"))
         return false;
       if ((i & 255) == 0 && state_.Done()) return true;
-      if (!state_.IsInteriorIrregular(v) || state_.Frozen(v) || state_.GivenUp(v)) continue;
+      if (!state_.IsInteriorIrregular(v) || state_.Frozen(v)) continue;
+      if (state_.GivenUp(v)) {
+        if (travel > 0) state_.Tried(v);  // tried until its region's bound of refusals
+        continue;
+      }
       state_.BeginTurn(v);
-      Turn(rep, v, travel);
+      const bool kept = Turn(rep, v, travel);
+      // a turn with the travel strategies that kept nothing: v was tried as it is (for the
+      // leftover reasons only; "no route" rather than "untried")
+      if (!kept && travel > 0) state_.Tried(v);
       state_.EndTurn();
     }
     return true;
@@ -208,14 +215,16 @@ class AutomaticReduction {
 
   /// v's turn: the per-vertex strategies, cheapest first; the first that edits ends it, and
   /// so does the region's bound of refused edits (ReductionState::TurnExhausted; the
-  /// strategies check it between attempts). A new strategy is one more line here.
-  void Turn(ReductionReport& rep, int v, int travel) {
-    if (cancel_.CancelAround(rep, v)) return;
-    if (travel == 0 || state_.UnchangedSinceFailure(v, travel) || state_.TurnExhausted()) return;
-    if (ed_.Valence(v) == 5 && transport_.Transport(rep, v, travel)) return;
-    if (state_.TurnExhausted()) return;
-    if (transport_.Isolated(v) && transport_.SplitAndAbsorb(rep, v, std::max(2, travel))) return;
+  /// strategies check it between attempts). A new strategy is one more line here. True if an
+  /// edit was kept.
+  bool Turn(ReductionReport& rep, int v, int travel) {
+    if (cancel_.CancelAround(rep, v)) return true;
+    if (travel == 0 || state_.UnchangedSinceFailure(v, travel) || state_.TurnExhausted()) return false;
+    if (ed_.Valence(v) == 5 && transport_.Transport(rep, v, travel)) return true;
+    if (state_.TurnExhausted()) return false;
+    if (transport_.Isolated(v) && transport_.SplitAndAbsorb(rep, v, std::max(2, travel))) return true;
     state_.Failed(v);
+    return false;
   }
 
   static CompositeOptions Quiet(const std::vector<char>* crease) {
@@ -261,9 +270,16 @@ class AutomaticReduction {
     std::vector<int> undone(m_.vert.size(), 0);
     for (auto& kv : state_.UndoneAt())
       if (kv.first >= 0 && size_t(kv.first) < undone.size()) undone[size_t(kv.first)] = kv.second;
+    // a region given up for the guard's refusals is "budget" even where the edits it refused
+    // were aimed at vertices farther than the reasons' ring (its split-and-absorbs that found
+    // no cancellation are not the guard's: those make it "no route")
+    for (const GaveUpRegion& g : state_.GaveUpRegions())
+      if (g.vertex >= 0 && size_t(g.vertex) < undone.size())
+        undone[size_t(g.vertex)] += g.refused - g.byReason[int(Refusal::NoCancellation)];
     LeftoverOptions lo;
     lo.reach = opt_.maxTravel;
     lo.undone = &undone;
+    lo.tried = &state_.TriedUnchanged();
     if (!opt_.frozen.empty()) lo.frozen = &opt_.frozen;
     rep.leftovers = ExplainLeftovers(m_, lo);
     const std::vector<int> rank = CompactionRank();

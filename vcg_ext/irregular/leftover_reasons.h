@@ -19,8 +19,13 @@
 //   budget     a partner is within reach, and edits around it (the vertex and its
 //              `undoneRings`-ring) were tried and undone by the edit guard at least `minUndone`
 //              times: the driver passes its per-vertex count of undone edits;
-//   untried    none of the above: a partner is within reach and nothing there was undone (the
-//              sweeps ended first: the target count, the sweep limit, the time limit).
+//   no route   a partner is within reach, nothing there was undone, and the driver's strategies
+//              were tried from this vertex since its last change (`tried`) and found no
+//              cancellation: no transport or split-and-absorb within the travel bound ends in a
+//              removal (e.g. two 5-7 pairs whose Burgers vectors are not opposite, dislocation.h);
+//   untried    none of the above: a partner is within reach, nothing there was undone, and the
+//              strategies were not tried from it in its present state (the sweeps ended first:
+//              the target count, the sweep limit, the time limit; or no `tried` is known).
 // The reasons partition the leftovers: the counts add up to the leftover count. The flags of
 // every test that holds are kept too (a cap on a thin ear is a cap and on a thin part).
 //
@@ -53,12 +58,13 @@
 namespace vcg_ext {
 namespace irregular {
 
-enum class LeftoverReason { Boundary = 0, Protected, Cap, Saddle, Thin, NoPartner, Budget, Untried };
-constexpr int kLeftoverReasons = 8;
+enum class LeftoverReason { Boundary = 0, Protected, Cap, Saddle, Thin, NoPartner, Budget, NoRoute, Untried };
+constexpr int kLeftoverReasons = 9;
 
 inline const char* LeftoverReasonName(LeftoverReason r) {
   static const char* n[kLeftoverReasons] = {"boundary", "protected", "cap",    "saddle",
-                                            "thin",     "no partner", "budget", "untried"};
+                                            "thin",     "no partner", "budget", "no route",
+                                            "untried"};
   return n[int(r)];
 }
 
@@ -73,6 +79,9 @@ struct LeftoverOptions {
   const std::vector<int>* undone = nullptr;   ///< per vertex index: edits tried there and undone by the
                                               ///< guard (the driver's count); null: none known
   const std::vector<char>* frozen = nullptr;  ///< per vertex index, 1: protected (may be null)
+  const std::vector<char>* tried = nullptr;   ///< per vertex index, 1: the driver's strategies were tried
+                                              ///< from it and nothing changed it since ("no route"
+                                              ///< rather than "untried"); null: not known
 };
 
 /// One leftover irregular vertex and why it stays.
@@ -97,9 +106,10 @@ struct LeftoverVertex {
 struct LeftoverReport {
   std::vector<LeftoverVertex> vertices;
   int total = 0;
-  int counts[kLeftoverReasons] = {0, 0, 0, 0, 0, 0, 0, 0};  ///< by primary reason: they add up to total
+  int counts[kLeftoverReasons] = {0, 0, 0, 0, 0, 0, 0, 0, 0};  ///< by primary reason: they add up to total
   int onThinPart = 0;  ///< leftovers on a thin part whatever their primary reason
-  int boundary = 0, protectedCount = 0, caps = 0, saddles = 0, thin = 0, noPartner = 0, budget = 0, untried = 0;
+  int boundary = 0, protectedCount = 0, caps = 0, saddles = 0, thin = 0, noPartner = 0, budget = 0, noRoute = 0,
+      untried = 0;
   int Count(LeftoverReason r) const { return counts[int(r)]; }
   /// "62 left: 20 cap, 5 saddle, 30 no partner, 7 budget (thin parts: 3)"; zero counts omitted.
   std::string Summary() const {
@@ -147,6 +157,7 @@ class LeftoverAnalysis {
     rep.thin = rep.counts[int(LeftoverReason::Thin)];
     rep.noPartner = rep.counts[int(LeftoverReason::NoPartner)];
     rep.budget = rep.counts[int(LeftoverReason::Budget)];
+    rep.noRoute = rep.counts[int(LeftoverReason::NoRoute)];
     rep.untried = rep.counts[int(LeftoverReason::Untried)];
     return rep;
   }
@@ -186,7 +197,8 @@ class LeftoverAnalysis {
         if (size_t(kv.first) < opt_.undone->size()) lv.undoneNearby += (*opt_.undone)[size_t(kv.first)];
     }
     if (lv.partner >= 0 && lv.undoneNearby >= std::max(1, opt_.minUndone)) set(LeftoverReason::Budget);
-    if (lv.partner >= 0 && lv.undoneNearby < std::max(1, opt_.minUndone)) set(LeftoverReason::Untried);
+    if (lv.partner >= 0 && lv.undoneNearby < std::max(1, opt_.minUndone))
+      set(Tried(v) ? LeftoverReason::NoRoute : LeftoverReason::Untried);
     for (int r = 0; r < kLeftoverReasons; ++r)
       if (lv.Has(LeftoverReason(r))) {
         lv.reason = LeftoverReason(r);
@@ -244,6 +256,7 @@ class LeftoverAnalysis {
   int Index(const VertexType* v) const { return int(vcg::tri::Index(m_, v)); }
   bool Live(int v) const { return v >= 0 && size_t(v) < m_.vert.size() && !m_.vert[size_t(v)].IsD() && m_.vert[size_t(v)].cVFp(); }
   bool Frozen(int v) const { return opt_.frozen && size_t(v) < opt_.frozen->size() && (*opt_.frozen)[size_t(v)]; }
+  bool Tried(int v) const { return opt_.tried && size_t(v) < opt_.tried->size() && (*opt_.tried)[size_t(v)]; }
 
   /// Area-weighted unit normal of a star.
   static CoordType Normal(const VertexStar<MeshType>& s) {

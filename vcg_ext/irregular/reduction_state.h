@@ -227,6 +227,9 @@ class ReductionState {
   // ------------------------------------------------------------ repeated failures
   /// A transport from v failed now.
   void Failed(int v) { Stamp(failedAt_, v, epoch_); }
+  /// v's turn with the travel strategies kept nothing (tried now, or skipped as tried before
+  /// and unchanged, or as given up): for the leftover reasons only (TriedUnchanged).
+  void Tried(int v) { Stamp(triedAt_, v, epoch_); }
   /// True if a transport from v already failed and nothing within `radius` edges has been
   /// edited since: trying again would fail the same way (the search is deterministic).
   bool UnchangedSinceFailure(int v, int radius) {
@@ -322,21 +325,35 @@ class ReductionState {
   size_t SnapshotBytes() const { return snapshot_.Bytes(); }
 
   /// Before the final measurement of a pass (automatic_reduction.h): gives back the per-vertex
-  /// stamps of kept edits and failed attempts (16 bytes a vertex), which only the sweeps read,
+  /// stamps of kept edits, failed attempts and turns (24 bytes a vertex), which only the sweeps
+  /// read (keeping one byte a vertex of them for the leftover reasons),
   /// and the pages of freed heap memory (ReleaseFreedMemory), so that the measurement's grid is
   /// not added on top of memory the run no longer uses. A retry starts with Reset() anyway;
   /// the counts, the undone edits and the given-up regions stay for the report.
   void ReleaseSweepState() {
+    // what the leftover reasons need of them, one byte a vertex: "no route" vs "untried"
+    triedUnchanged_.assign(m_.vert.size(), 0);
+    for (size_t v = 0; v < triedUnchanged_.size(); ++v) {
+      const long tried = StampOf(triedAt_, int(v));
+      triedUnchanged_[v] = tried >= 0 && tried >= StampOf(editedAt_, int(v));
+    }
     std::vector<long>().swap(editedAt_);
+    std::vector<long>().swap(triedAt_);
     std::vector<long>().swap(failedAt_);
     ReleaseFreedMemory();
   }
 
+  /// Per vertex index, 1: it had a turn with the travel strategies that kept nothing (Tried)
+  /// and no kept edit touched it since (set by ReleaseSweepState; the leftover reasons' `tried`).
+  const std::vector<char>& TriedUnchanged() const { return triedUnchanged_; }
+
   /// Forgets the edit history (a retry starts from the restored input).
   void Reset() {
     epoch_ = 0;
+    triedUnchanged_.clear();
     editedAt_.clear();
     failedAt_.clear();
+    triedAt_.clear();
     undoneAt_.clear();
     removed_.clear();
     effort_.clear();
@@ -370,6 +387,8 @@ class ReductionState {
   std::vector<int> removed_;        ///< vertices deleted by the current outermost edit
   long epoch_ = 0;                  ///< kept edits so far
   std::vector<long> editedAt_, failedAt_;  ///< per vertex: epoch of its last kept edit / failed attempt
+  std::vector<long> triedAt_;              ///< per vertex: epoch of its last turn with travel that kept nothing
+  std::vector<char> triedUnchanged_;       ///< see TriedUnchanged
   std::map<int, int> undoneAt_;     ///< per vertex: edits the guard undid
   std::map<int, Effort> effort_;    ///< per irregular vertex whose turns had refusals: the bounded effort
   int turn_ = -1;                   ///< the vertex whose turn it is (-1: none)
