@@ -199,16 +199,15 @@ class AutomaticReduction {
         return false;
       if ((i & 255) == 0 && state_.Done()) return true;
       if (!state_.IsInteriorIrregular(v) || state_.Frozen(v)) continue;
-      if (state_.GivenUp(v)) {
-        if (travel > 0) state_.Tried(v);  // tried until its region's bound of refusals
-        continue;
+      bool kept = false;
+      if (!state_.GivenUp(v)) {
+        state_.BeginTurn(v);
+        kept = Turn(rep, v, travel);
+        state_.EndTurn();
       }
-      state_.BeginTurn(v);
-      const bool kept = Turn(rep, v, travel);
-      // a turn with the travel strategies that kept nothing: v was tried as it is (for the
-      // leftover reasons only; "no route" rather than "untried")
+      // a turn with the travel strategies that kept nothing, or skipped as given up: v was
+      // tried as it is (for the leftover reasons only; "no route" rather than "untried")
       if (!kept && travel > 0) state_.Tried(v);
-      state_.EndTurn();
     }
     return true;
   }
