@@ -1008,13 +1008,17 @@ class AtomicOperations {
       }
     }
     const int created = NextCreated(0);
+    // Assigned from initializer lists, the two maps reuse their nodes from one candidate to the
+    // next (std::map's list assignment recycles them): most candidates fail the test, and a
+    // fresh pair of maps each cost eight heap allocations.
+    std::map<int, int> before, pred;
     for (const Scored& sc : cands) {
       const GraphStep& c = sc.c;
       const int* o = sc.o;
-      std::vector<int> touched =
-          c.kind == GraphStep::kSplit ? std::vector<int>{c.x, c.y, c.z} : std::vector<int>{c.x, c.y, o[0], o[1]};
-      std::map<int, int> before, pred;
-      for (int t : touched) before[t] = val(t);
+      if (c.kind == GraphStep::kSplit)
+        before = {{c.x, val(c.x)}, {c.y, val(c.y)}, {c.z, val(c.z)}};
+      else
+        before = {{c.x, val(c.x)}, {c.y, val(c.y)}, {o[0], val(o[0])}, {o[1], val(o[1])}};
       const int dx = val(c.x), dy = val(c.y);
       if (c.kind == GraphStep::kFlip) {
         pred = {{c.x, dx - 1}, {c.y, dy - 1}, {o[0], val(o[0]) + 1}, {o[1], val(o[1]) + 1}};

@@ -20,7 +20,6 @@
 #include <limits>
 #include <map>
 #include <unordered_map>
-#include <unordered_set>
 #include <vector>
 
 #include <vcg/space/distance3.h>
@@ -138,15 +137,17 @@ class EditGuard {
     return false;
   }
 
+  /// Smallest angle of f in degrees (0 with a zero-length edge). acos is decreasing and
+  /// correctly rounded (so monotone): the smallest angle is the acos of the largest cosine, one
+  /// acos per face instead of three, the same value.
   static double MinAngle(const FaceType* f) {
-    double mn = 180;
+    double maxCos = -1;
     for (int z = 0; z < 3; ++z) {
       auto a = f->cP((z + 1) % 3) - f->cP(z), b = f->cP((z + 2) % 3) - f->cP(z);
       const double la = a.Norm(), lb = b.Norm();
-      const double c = la > 0 && lb > 0 ? double(a.dot(b)) / (la * lb) : 1;
-      mn = std::min(mn, std::acos(std::max(-1.0, std::min(1.0, c))) * 180 / M_PI);
+      maxCos = std::max(maxCos, la > 0 && lb > 0 ? double(a.dot(b)) / (la * lb) : 1);
     }
-    return mn;
+    return std::acos(std::max(-1.0, std::min(1.0, maxCos))) * 180 / M_PI;
   }
 
   /// Local symmetric Hausdorff distance between the edited faces around the seeds and the
@@ -191,16 +192,26 @@ class EditGuard {
     // the face hash below only when there is one. A sample off the edited surface (a cut
     // crease) lies outside its face's box: the boxes are widened; deviations grow edit by
     // edit, so catching them below twice the budget suffices.
+    // One grid query over the union of the faces' widened boxes, then each sample found kept
+    // if it lies in one of them: the same samples as a query per face, at one query per edit.
     std::vector<int> near;
     {
-      std::unordered_set<int> probed;
+      std::vector<vcg::Box3<float>> faceBoxes;
+      faceBoxes.reserve(changed.size());
+      vcg::Box3<float> all;
       for (const FaceType* f : changed) {
         vcg::Box3<float> b;
         for (int z = 0; z < 3; ++z) b.Add(vcg::Point3f::Construct(f->cP(z)));
         b.Offset(float(2 * budget_));
-        for (int i : originalSamples_.InBox(b))
-          if (probed.insert(i).second) near.push_back(i);
+        faceBoxes.push_back(b);
+        all.Add(b);
       }
+      for (int i : originalSamples_.InBox(all))
+        for (const vcg::Box3<float>& b : faceBoxes)
+          if (b.IsIn(originalSamples_.Point(i))) {
+            near.push_back(i);
+            break;
+          }
     }
     if (near.empty()) return mx;
     // The faces are hashed on a grid so each sample is compared with the faces around it
