@@ -41,11 +41,13 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "directions.h"
 #include "graph_ops.h"
 #include "graph_step.h"
+#include "stamp_set.h"
 
 namespace vcg_ext {
 namespace irregular {
@@ -956,11 +958,14 @@ class AtomicOperations {
     }
     std::sort(area.begin(), area.end());
     area.erase(std::unique(area.begin(), area.end()), area.end());
-    std::map<int, int> valence;
+    // each valence walked once per call, remembered in a stamped array (no map, no allocation
+    // per call: the array grows with the mesh only)
+    const size_t nv = ed_.Mesh().vert.size();
+    valenceSeen_.Begin(nv);
+    if (valenceOf_.size() < nv) valenceOf_.resize(std::max(nv, 2 * valenceOf_.size()));
     auto val = [&](int v) {
-      auto it = valence.find(v);
-      if (it != valence.end()) return it->second;
-      return valence[v] = ed_.Valence(v);
+      if (valenceSeen_.Insert(size_t(v))) valenceOf_[size_t(v)] = ed_.Valence(v);
+      return valenceOf_[size_t(v)];
     };
     struct Scored {
       GraphStep c;
@@ -1044,13 +1049,21 @@ class AtomicOperations {
         if (kv.second != 6 && kv.second != 0) p.irregular.push_back(kv.first);
       p.result = Result::Ok();
       p = Check(p);
-      if (p) result.push_back(p);
+      if (p) result.push_back(std::move(p));
     }
     return result;
   }
 
+  /// Gives back the per-vertex scratch of Candidates (a later call grows it again).
+  void ReleaseScratch() {
+    valenceSeen_.Release();
+    std::vector<int>().swap(valenceOf_);
+  }
+
  private:
   Editor& ed_;
+  StampSet valenceSeen_;        ///< Candidates: the vertices whose valence it has walked
+  std::vector<int> valenceOf_;  ///< ... and their valences
 };
 
 }  // namespace irregular

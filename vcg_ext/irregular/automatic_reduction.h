@@ -181,9 +181,12 @@ class AutomaticReduction {
       rep.interrupted = true;
       return;
     }
-    // the sweeps' stamps are not read past this point: give them back before the final
-    // relaxation allocates its arrays and the measurement its grid (the run's memory peak)
+    // the sweeps' stamps and the strategies' per-vertex scratch are not read past this point:
+    // give them back before the final relaxation allocates its arrays and the measurement its
+    // grid (the run's memory peak)
     state_.ReleaseSweepState();
+    comp_.atomic().ReleaseScratch();
+    transport_.ReleaseScratch();
     rep.hausdorffPercent = FinalRelax();
   }
 

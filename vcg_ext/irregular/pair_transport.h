@@ -14,7 +14,6 @@
 
 #include <algorithm>
 #include <functional>
-#include <queue>
 #include <unordered_map>
 #include <vector>
 
@@ -23,6 +22,7 @@
 #include "local_cancellation.h"
 #include "reduction_options.h"
 #include "reduction_state.h"
+#include "stamp_set.h"
 
 namespace vcg_ext {
 namespace irregular {
@@ -69,6 +69,9 @@ class PairTransport {
         return true;
     return false;
   }
+
+  /// Gives back NearestIrregular's per-vertex scratch (a later call grows it again).
+  void ReleaseScratch() { seen_.Release(); }
 
   bool Isolated(int v) {
     for (auto* nb : ed_.Star(v).neighbors)
@@ -160,7 +163,8 @@ class PairTransport {
   /// vertex, a collapse leaves its survivor at one of three known places (graph_ops.h
   /// Collapse); only a split's new positions need the step applied. A step is applied (and
   /// rolled back) only if its bound can still beat the best so far, so the choice is the
-  /// one trying all six would make, at usually two or three applications instead of seven.
+  /// one trying all six would make, at usually two or three applications instead of seven (the
+  /// last trial, when it is the choice, is kept rather than undone and applied again).
   AtomicOutcome StepCloser(int v5, int v7, CoordType goal) {
     auto mid = [&](int a, int b) { return (ed_.V(a)->P() + ed_.V(b)->P()) / 2; };
     auto dist = [&](const CoordType& p) { return double((p - goal).Norm()); };
@@ -171,7 +175,8 @@ class PairTransport {
       int dir;
       bool operator<(const Bound& o) const { return d < o.d || (d == o.d && dir < o.dir); }
     };
-    std::vector<Bound> bounds;
+    Bound bounds[6];  // at most one per direction: no heap allocation per step
+    size_t count = 0;
     for (int dir = 0; dir < 6; ++dir) {
       AtomicPrediction pr = ops_.PredictMovePair57(v5, v7, dir);
       bool ok = bool(pr);
@@ -186,16 +191,22 @@ class PairTransport {
         lb = std::min({dist((p5 + (px + ps) / 2) / 2), dist((p5 + ps) / 2), dist((p5 + px) / 2)});
       }
       // a margin for rounding: the bound must never exceed the distance after the real step
-      bounds.push_back({lb * (1 - 1e-9) - 1e-12, dir});
+      bounds[count++] = {lb * (1 - 1e-9) - 1e-12, dir};
     }
-    std::sort(bounds.begin(), bounds.end());
-    for (const Bound& b : bounds) {
-      if (b.d > best || (bestDir >= 0 && b.d == best && b.dir > bestDir)) break;
+    std::sort(bounds, bounds + count);
+    // past the best so far, a bound that cannot beat it ends the trials
+    auto hopeless = [&](const Bound& b) { return b.d > best || (bestDir >= 0 && b.d == best && b.dir > bestDir); };
+    for (size_t i = 0; i < count && !hopeless(bounds[i]); ++i) {
+      const Bound& b = bounds[i];
       auto cp = ed_.Mark();
       AtomicOutcome o = ops_.MovePair57(v5, v7, b.dir);
       if (o) {
         const double d = dist(mid(o.irregular[0], o.irregular[1]));
-        if (d < best || (d == best && bestDir >= 0 && b.dir < bestDir)) best = d, bestDir = b.dir;
+        if (d < best || (d == best && bestDir >= 0 && b.dir < bestDir)) {
+          best = d, bestDir = b.dir;
+          // the best and the last trial: kept as it is instead of undone and applied again
+          if (i + 1 == count || hopeless(bounds[i + 1])) return o;
+        }
       }
       ed_.RollbackTo(cp);
     }
@@ -278,28 +289,30 @@ class PairTransport {
     return false;
   }
 
-  /// Irregular vertices (not in `from`) within `radius` edges of `from`, nearest first.
+  /// Irregular vertices (not in `from`) within `radius` edges of `from`, nearest first (a
+  /// breadth-first search, each vertex's neighbours by index). Layer by layer over reused
+  /// buffers, with a stamp set for "seen": no allocation per call but the result.
   std::vector<int> NearestIrregular(const std::vector<int>& from, int radius, int count, int valence = 0) {
-    std::unordered_map<int, int> dist;
-    std::queue<int> q;
-    for (int v : from) dist[v] = 0, q.push(v);
     std::vector<int> found;
-    while (!q.empty() && int(found.size()) < count) {
-      const int v = q.front();
-      q.pop();
-      if (dist[v] >= radius) continue;
-      VertexStar<MeshType> s = ed_.Star(v);
-      std::vector<int> next;
-      for (auto* nb : s.neighbors) next.push_back(ed_.Index(nb));
-      std::sort(next.begin(), next.end());  // deterministic order
-      for (int w : next) {
-        if (dist.count(w)) continue;
-        dist[w] = dist[v] + 1;
-        q.push(w);
-        if (state_.IsInteriorIrregular(w) && !state_.Frozen(w) && (valence == 0 || ed_.Valence(w) == valence) &&
-            int(found.size()) < count)
-          found.push_back(w);
+    seen_.Begin(m_.vert.size());
+    layer_.assign(from.begin(), from.end());
+    for (int v : from) seen_.Insert(size_t(v));
+    for (int r = 0; r < radius && !layer_.empty() && int(found.size()) < count; ++r) {
+      nextLayer_.clear();
+      for (size_t i = 0; i < layer_.size() && int(found.size()) < count; ++i) {
+        VertexStar<MeshType> s = ed_.Star(layer_[i]);
+        ring_.clear();
+        for (auto* nb : s.neighbors) ring_.push_back(ed_.Index(nb));
+        std::sort(ring_.begin(), ring_.end());  // deterministic order
+        for (int w : ring_) {
+          if (!seen_.Insert(size_t(w))) continue;
+          nextLayer_.push_back(w);
+          if (state_.IsInteriorIrregular(w) && !state_.Frozen(w) && (valence == 0 || ed_.Valence(w) == valence) &&
+              int(found.size()) < count)
+            found.push_back(w);
+        }
       }
+      layer_.swap(nextLayer_);
     }
     return found;
   }
@@ -328,6 +341,8 @@ class PairTransport {
   EditGuard<MeshType>& guard_;
   ReductionState<MeshType>& state_;
   LocalCancellation<MeshType>& cancel_;
+  StampSet seen_;                          ///< NearestIrregular's visited vertices
+  std::vector<int> layer_, nextLayer_, ring_;  ///< ... and its buffers
 };
 
 }  // namespace irregular

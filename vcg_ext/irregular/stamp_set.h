@@ -32,6 +32,11 @@ class StampSet {
     return true;
   }
   bool Contains(size_t i) const { return stamps_[i] == current_; }
+  /// Gives the array back (a later Begin grows it again).
+  void Release() {
+    std::vector<uint32_t>().swap(stamps_);
+    current_ = 0;
+  }
 
  private:
   std::vector<uint32_t> stamps_;
