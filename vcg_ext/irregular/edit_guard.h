@@ -137,17 +137,10 @@ class EditGuard {
     return false;
   }
 
-  /// Smallest angle of f in degrees (0 with a zero-length edge). acos is decreasing and
-  /// correctly rounded (so monotone): the smallest angle is the acos of the largest cosine, one
-  /// acos per face instead of three, the same value.
+  /// Smallest angle of f in degrees (0 with a zero-length edge): one acos per face
+  /// (relaxation.h relax_detail::MaxCornerCos).
   static double MinAngle(const FaceType* f) {
-    double maxCos = -1;
-    for (int z = 0; z < 3; ++z) {
-      auto a = f->cP((z + 1) % 3) - f->cP(z), b = f->cP((z + 2) % 3) - f->cP(z);
-      const double la = a.Norm(), lb = b.Norm();
-      maxCos = std::max(maxCos, la > 0 && lb > 0 ? double(a.dot(b)) / (la * lb) : 1);
-    }
-    return std::acos(std::max(-1.0, std::min(1.0, maxCos))) * 180 / M_PI;
+    return std::acos(std::max(-1.0, std::min(1.0, relax_detail::MaxCornerCos(f)))) * 180 / M_PI;
   }
 
   /// Local symmetric Hausdorff distance between the edited faces around the seeds and the

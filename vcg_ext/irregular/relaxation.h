@@ -256,24 +256,26 @@ bool MoveFolds(const VertexStar<MeshType>& st, typename MeshType::VertexType* v,
   return false;
 }
 
+/// Largest cosine of f's three corner angles (1 with a zero-length edge: a zero angle). Each
+/// edge and length once: p_j - p_i is exactly -(p_i - p_j), and a negated vector has the same
+/// norm and negates a dot product exactly, so this is the value corner by corner would give.
+template <class FaceType>
+double MaxCornerCos(const FaceType* f) {
+  const auto e01 = f->cP(1) - f->cP(0), e12 = f->cP(2) - f->cP(1), e20 = f->cP(0) - f->cP(2);
+  const double l01 = e01.Norm(), l12 = e12.Norm(), l20 = e20.Norm();
+  if (l01 <= 0 || l12 <= 0 || l20 <= 0) return 1;
+  // the corner at P(z) between the edges to P(z+1) and P(z+2)
+  return std::max({double(-e01.dot(e20)) / (l01 * l20), double(-e12.dot(e01)) / (l12 * l01),
+                   double(-e20.dot(e12)) / (l20 * l12)});
+}
+
 /// Smallest angle (radians) of the faces around v.
 template <class MeshType>
 double MinAngleAround(const VertexStar<MeshType>& st) {
-  // acos is decreasing: the smallest angle is the acos of the largest cosine, so one acos
-  // instead of one per corner (the same value; acos was 5% of Automatic Reduction's time).
-  // Each face's three edges and lengths once, not twice (corner by corner): the same values,
-  // as p_j - p_i is exactly -(p_i - p_j) and a negated vector has the same norm and negates a
-  // dot product exactly (MoveHurts calls this twice per relaxed vertex).
+  // acos is decreasing and correctly rounded (so monotone): the smallest angle is the acos of
+  // the largest cosine, one acos per star (MoveHurts calls this twice per relaxed vertex)
   double maxCos = -1.0;
-  for (auto& c : st.corners) {
-    const auto e01 = c.f->P(1) - c.f->P(0), e12 = c.f->P(2) - c.f->P(1), e20 = c.f->P(0) - c.f->P(2);
-    const double l01 = e01.Norm(), l12 = e12.Norm(), l20 = e20.Norm();
-    if (l01 <= 0 || l12 <= 0 || l20 <= 0) return 0;
-    // the corner at P(z) between the edges to P(z+1) and P(z+2)
-    maxCos = std::max(maxCos, double(-e01.dot(e20)) / (l01 * l20));
-    maxCos = std::max(maxCos, double(-e12.dot(e01)) / (l12 * l01));
-    maxCos = std::max(maxCos, double(-e20.dot(e12)) / (l20 * l12));
-  }
+  for (auto& c : st.corners) maxCos = std::max(maxCos, MaxCornerCos(c.f));
   return std::acos(std::max(-1.0, std::min(1.0, maxCos)));
 }
 
