@@ -39,12 +39,15 @@ def check_result(out, t0, t1, budget=0.5, remeshed=False):
     assert out["remeshed"] == remeshed
     exact = fo.hausdorff_percent(t0, t1)
     assert exact <= budget * (1 + 1e-6), (exact, budget)
+    # the filter samples a superset of the oracle's points (quality.h MaxSampleDistance): its own
+    # measure of the result is never below the oracle's (float against double: 1e-3, and 1e-4
+    # percent, a millionth of the diagonal, for float rounding where nothing moved)
+    assert out["hausdorff_percent"] >= exact * (1 - 1e-3) - 1e-4, (out["hausdorff_percent"], exact)
     # Both are maxima over sample points of exact point-to-surface distances, so both are lower
-    # bounds of the true distance, at different points (the oracle samples more: vertices, edge
-    # midpoints, centroids, both ways): the filter's value is at most a few percent above the
-    # oracle's (mesh_with_border at a 0.1% budget: 1% above), and it keeps the budget itself.
+    # bounds of the true distance; the filter's extra points (edge midpoints) put it at most a
+    # few percent above the oracle's, and it keeps the budget itself.
     assert out["hausdorff_percent"] <= budget * (1 + 1e-6), (out["hausdorff_percent"], budget)
-    assert out["hausdorff_percent"] <= exact * 1.03 + 1e-6, (out["hausdorff_percent"], exact)
+    assert out["hausdorff_percent"] <= exact * 1.03 + 1e-4, (out["hausdorff_percent"], exact)
     sh = fo.shape_measures(t1)
     assert out["min_angle_after"] == pytest.approx(sh["min_angle"], abs=1e-6)
     assert out["percent_below_30_after"] == pytest.approx(100 * sh["share_below_30"], abs=1e-9)
@@ -72,12 +75,13 @@ def test_bunny_example_meets_the_paper_and_beats_the_peer():
     assert 0 < out["remesh_hausdorff_percent"] < exact + 1e-9 or out["remesh_hausdorff_percent"] < 0.5
     assert out["type_splits"] + out["local_cancellations"] + out["transports"] + out["glides"] > 0
     assert 0 < out["reduction_seconds"] <= out["seconds"]
-    # the oracle's distance against MeshLab's own sampled one: no sample may exceed the exact max
+    # the oracle's distance against MeshLab's own sampled one: both sample the surfaces (neither
+    # is the exact maximum), so they agree within a few percent, and MeshLab's keeps the budget
     ms.add_mesh(pymeshlab.Mesh(vertex_matrix=t0.vertices, face_matrix=t0.faces.astype(np.int32)))
     kw = dict(samplevert=True, sampleedge=True, sampleface=True, samplenum=100000)
     pm = max(ms.get_hausdorff_distance(sampledmesh=0, targetmesh=1, **kw)["max"],
              ms.get_hausdorff_distance(sampledmesh=1, targetmesh=0, **kw)["max"]) / fo.diagonal(t0) * 100
-    assert 0.8 * exact <= pm <= exact * (1 + 1e-6), (pm, exact)
+    assert 0.8 * exact <= pm <= min(1.05 * exact, 0.5), (pm, exact)
     # The irregular vertices left are where the surface needs them: v5 on caps, v7 in saddles
     # (the sign of the input's Gaussian curvature within 4% of the diagonal around them; on
     # random vertices either sign is about as likely). Measured: 90% and 89%.

@@ -691,10 +691,11 @@ void ReduceFandisk6K(const ReductionOptions& opt, FandiskRun& run) {
 // creases (edges sharper than ReductionOptions::creaseDeg, 60 degrees) stays within the crease
 // budget of the result, up to the final relaxation's rounding: the vertices on creases never
 // move in any relaxation, and an edit that cuts a crease is undone. Without the protection
-// (creaseDeg 0) the same run cuts them by several times as much.
+// (creaseDeg 0) the same run cuts them by several times as much, or cannot keep the budget.
 TEST(AutomaticReduction, CreasesStaySharp) {
   double percent[2] = {0, 0};
   int left[2] = {0, 0};
+  bool allUndone[2] = {false, false};
   for (int protect : {1, 0}) {
     ReductionOptions opt;
     if (!protect) opt.creaseDeg = 0;
@@ -702,14 +703,20 @@ TEST(AutomaticReduction, CreasesStaySharp) {
     ASSERT_NO_FATAL_FAILURE(ReduceFandisk6K(opt, run));
     percent[protect] = run.creasePercent;
     left[protect] = run.report.irregularAfter;
+    allUndone[protect] = run.report.allUndone;
     std::printf("fandisk at 6K, creases %s: %d -> %d irregular, input creases within %.4f%% of the diagonal\n",
                 protect ? "protected" : "not protected", run.report.irregularBefore, run.report.irregularAfter,
                 percent[protect]);
   }
   const double budget = ReductionOptions().creaseBudgetPercent;
   EXPECT_LE(percent[1], 2 * budget);
-  EXPECT_GT(percent[0], 3 * percent[1]);
+  EXPECT_FALSE(allUndone[1]);
+  // unprotected, the edits cut the creases: by several times as much, or so far that even the
+  // tightest retry overshoots the Hausdorff budget and the input comes back unchanged (since
+  // the final check samples as densely as the tests' oracle, 0.9.2)
+  EXPECT_TRUE(percent[0] > 3 * percent[1] || allUndone[0]) << percent[0];
   EXPECT_GT(left[0], 0);
+  EXPECT_LT(left[1], left[0]);
 }
 
 // Crease vertices are never relaxed, so an edit next to a crease cannot even out the triangles

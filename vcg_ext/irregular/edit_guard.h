@@ -111,6 +111,28 @@ class EditGuard {
     LocalRelax(m_, movable, &original_, ro, crease_);  // crease vertices stay: moving them rounds the crease
   }
 
+  /// Does an edge around the 2-ring of the seeds join faces whose normals differ by more than
+  /// maxTurnDeg (a triangle turned over)? For edits made without the per-step fold check.
+  bool FoldsAround(const std::vector<int>& seeds, double maxTurnDeg = 120) {
+    std::vector<int> live;
+    for (int v : seeds)
+      if (ed_.IsLive(v)) live.push_back(v);
+    const double c = std::cos(maxTurnDeg * M_PI / 180.0);
+    for (int v : KRing(m_, live, 2))
+      for (auto& cr : ed_.Star(v).corners) {
+        const FaceType* f = cr.f;
+        const CoordType n0 = vcg::TriangleNormal(*f);
+        for (int z = 0; z < 3; ++z) {
+          const FaceType* g = f->cFFp(z);
+          if (g == f) continue;
+          const CoordType n1 = vcg::TriangleNormal(*g);
+          const double d = double(n0.Norm()) * double(n1.Norm());
+          if (d == 0 || double(n0.dot(n1)) / d < c) return true;
+        }
+      }
+    return false;
+  }
+
   /// Smallest angle (degrees) of the faces around the 2-ring of the seeds. With atCrease, the
   /// faces with a vertex on a crease line count there instead (*atCrease: their smallest angle,
   /// left as it was when there is none).
@@ -436,6 +458,9 @@ class GuardedEdit {
                                                      : Refusal::Hausdorff);
     return false;
   }
+  /// The guard's verdict alone, without undoing or recording anything: for a caller that
+  /// has another way to try when it fails.
+  bool Passes(const std::vector<int>& touched) { return g_.Judge(touched, angleBefore_) == GuardVerdict::Kept; }
   /// The edit is kept: stamps, running count, and (outermost edit) the journal's commit.
   void Keep(const std::vector<int>& touched) { g_.state().Kept(touched); }
   void Undo() { g_.ed().RollbackTo(cp_); }
