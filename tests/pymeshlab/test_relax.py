@@ -58,9 +58,9 @@ def test_example_global_relaxation_on_the_bunny():
 @pytest.mark.parametrize("name,mode,iterations", [("knot1.off", "Local", 10), ("elephant.off", "Global", 3),
                                                   ("fandisk.off", "Local", 5)])
 def test_hausdorff_distance_against_the_oracle(name, mode, iterations):
-    """The filter's sampled Hausdorff distance never exceeds the oracle's and comes within 20%
-    of it (the filter samples vertices, edge midpoints and centroids, a subset of the oracle's
-    points); MeshLab's own measure agrees with the oracle within 20% below and 2% above. The
+    """The filter's sampled Hausdorff distance is never below the oracle's and at most a few
+    percent above it (the filter samples a superset of the oracle's points: its edge midpoints
+    besides; float against double: 1e-3, and 1e-4 percent); MeshLab's own measure agrees with the oracle within 20% below and 2% above. The
     oracle's distances are exact per point, but its maximum is taken over fixed samples
     (vertices, two points per edge, four per face), so it is a lower bound of the true
     Hausdorff distance: MeshLab's 50000 random samples can find a point a little farther (on
@@ -71,7 +71,7 @@ def test_hausdorff_distance_against_the_oracle(name, mode, iterations):
     t1 = tri(ms)
     exact = fo.hausdorff_percent(t0, t1)
     assert 0 < exact < 1
-    assert 0.8 * exact <= out["hausdorff_percent"] <= exact * (1 + 1e-9) + 1e-12
+    assert exact * (1 - 1e-3) - 1e-4 <= out["hausdorff_percent"] <= exact * 1.03 + 1e-4, (out["hausdorff_percent"], exact)
     pm = pymeshlab_hausdorff_percent(t0, t1)
     assert 0.8 * exact <= pm <= exact * 1.02 + 1e-9, (pm, exact)
     assert_shape_values(out, t0, t1)
