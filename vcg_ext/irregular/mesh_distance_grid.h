@@ -113,6 +113,7 @@ class MeshDistanceGrid {
     for (uint32_t t = 0; t < m.face.size(); ++t)
       if (!m.face[t].IsD()) ForCells(Box(t), [&](uint64_t k) { cellFaces_[fill[CellOf(k)]++] = t; });
     lastQuery_.assign(m.face.size(), 0);
+    hasFF_ = vcg::tri::HasFFAdjacency(m);
   }
 
   /// Bytes held, for memory accounting.
@@ -123,8 +124,29 @@ class MeshDistanceGrid {
   /// The bounding-box diagonal of the live vertices (as a SurfaceProjector of m reports it).
   float Diagonal() const { return diagBox_.Diag(); }
 
+  /// Is p within r of face t or of a face next to it (FF, when the mesh has it)? One to four
+  /// point-face distances: for a maximum of distances (the one-sided Hausdorff distance), a
+  /// sample that a face near the last one's closest face keeps within the maximum so far cannot
+  /// raise it, and needs no search.
+  bool NearFace(uint32_t t, const vcg::Point3f& p, float r) const {
+    if (t >= m_.face.size() || m_.face[t].IsD()) return false;
+    float d = r;
+    if (Measure(t, p, d)) return true;
+    if (!hasFF_) return false;
+    for (int z = 0; z < 3; ++z) {
+      const auto* g = m_.face[t].cFFp(z);
+      if (g == nullptr || g == &m_.face[t]) continue;
+      if (Measure(uint32_t(g - &m_.face[0]), p, d)) return true;
+    }
+    return false;
+  }
+  /// The face the last Distance() found closest (kNoFace if none within its maxDist).
+  uint32_t LastClosest() const { return closest_; }
+  static constexpr uint32_t kNoFace = ~uint32_t(0);
+
   /// Distance from p to the closest live face, or maxDist if none is closer.
   float Distance(const vcg::Point3f& p, float maxDist) {
+    closest_ = kNoFace;
     if (cellKeys_.empty()) return maxDist;
     if (++query_ == 0) {  // the stamps wrapped around: start them again
       std::fill(lastQuery_.begin(), lastQuery_.end(), 0);
@@ -248,7 +270,16 @@ class MeshDistanceGrid {
     view.n = (view.cP(1) - view.cP(0)) ^ (view.cP(2) - view.cP(0));
     view.n.Normalize();
     vcg::Point3f q;
-    vcg::face::PointDistanceBase(view, p, best, q);
+    if (vcg::face::PointDistanceBase(view, p, best, q)) closest_ = t;
+  }
+  /// vcg's point-face distance on face t if under d (then d is set and true returned).
+  bool Measure(uint32_t t, const vcg::Point3f& p, float& d) const {
+    FaceView view;
+    for (int z = 0; z < 3; ++z) view.v[z].p = Corner3f(t, z);
+    view.n = (view.cP(1) - view.cP(0)) ^ (view.cP(2) - view.cP(0));
+    view.n.Normalize();
+    vcg::Point3f q;
+    return !m_.face[t].IsD() && vcg::face::PointDistanceBase(view, p, d, q);
   }
 
   const MeshType& m_;
@@ -263,6 +294,8 @@ class MeshDistanceGrid {
   std::vector<uint32_t> cellFaces_;    ///< indices into m.face (live faces), cell by cell
   std::vector<uint32_t> lastQuery_;    ///< per face index: the last query that measured it
   uint32_t query_ = 0;
+  uint32_t closest_ = kNoFace;         ///< the face the last Distance() found closest
+  bool hasFF_ = false;                 ///< the mesh has face-face adjacency (NearFace reads it)
 };
 
 }  // namespace irregular

@@ -60,10 +60,12 @@ ShapeMeasures MeasureShape(const MeshType& m) {
 /// A superset of the independent oracle's samples (tests/oracle: fi_oracle.surface_samples), so
 /// this is never below what the tests measure: with the midpoints and centroids alone, a coarse
 /// input (elephant, 2775 vertices) measured 0.45% where the oracle found 0.51%. O(F) calls.
+/// distance(p, mx) gets the maximum so far: where p's distance is at most mx, it may return
+/// any value up to mx (p cannot raise the maximum); elsewhere it must return the distance.
 template <class MeshA, class DistanceFn>
 double MaxSampleDistance(const MeshA& a, DistanceFn distance) {
   double mx = 0;
-  auto probe = [&](const vcg::Point3f& p) { mx = std::max(mx, double(distance(p))); };
+  auto probe = [&](const vcg::Point3f& p) { mx = std::max(mx, double(distance(p, mx))); };
   for (auto& v : a.vert)
     if (!v.IsD()) probe(vcg::Point3f::Construct(v.cP()));
   for (auto& f : a.face) {
@@ -86,10 +88,15 @@ double MaxSampleDistance(const MeshA& a, DistanceFn distance) {
 /// edge midpoints and third points, face centroids and inner points (MaxSampleDistance). O(F log F).
 template <class MeshType>
 double OneSidedHausdorff(const MeshType& a, const SurfaceProjector& to) {
-  return MaxSampleDistance(a, [&](const vcg::Point3f& p) {
+  // the last sample's closest face first, as for a MeshDistanceGrid below
+  const proj_detail::PFace* hint = nullptr;
+  return MaxSampleDistance(a, [&](const vcg::Point3f& p, double mx) {
+    if (mx > 0 && SurfaceProjector::NearFace(hint, p, float(mx))) return mx;
     float d = 0;
-    to.Closest(p, &d);
-    return d;
+    const proj_detail::PFace* f = nullptr;
+    to.Closest(p, &d, nullptr, 0, &f);
+    if (f) hint = f;
+    return double(d);
   });
 }
 
@@ -98,7 +105,17 @@ double OneSidedHausdorff(const MeshType& a, const SurfaceProjector& to) {
 template <class MeshA, class MeshB>
 double OneSidedHausdorff(const MeshA& a, MeshDistanceGrid<MeshB>& to) {
   const float reach = to.Diagonal();
-  return MaxSampleDistance(a, [&](const vcg::Point3f& p) { return to.Distance(p, reach); });
+  // Consecutive samples lie on the same face of a: the face found closest for the last one
+  // (or one next to it) usually keeps the next one within the maximum so far, which then
+  // needs no search; only a sample that may raise the maximum is searched for. The same
+  // maximum, to the bit, at a fraction of the searches.
+  uint32_t hint = MeshDistanceGrid<MeshB>::kNoFace;
+  return MaxSampleDistance(a, [&](const vcg::Point3f& p, double mx) {
+    if (mx > 0 && to.NearFace(hint, p, float(mx))) return mx;
+    const float d = to.Distance(p, reach);
+    if (to.LastClosest() != MeshDistanceGrid<MeshB>::kNoFace) hint = to.LastClosest();
+    return double(d);
+  });
 }
 
 /// Symmetric Hausdorff distance between the edited mesh and the original surface, in percent of

@@ -77,11 +77,14 @@ class SurfaceProjector {
 
   /// Closest point of the original surface to p (p itself if nothing lies within maxDist;
   /// maxDist <= 0 means the bounding-box diagonal). dist receives the distance.
-  Coord Closest(const Coord& p, float* dist = nullptr, Coord* normal = nullptr, float maxDist = 0) const {
+  /// face, if given, receives the closest face (nullptr if none).
+  Coord Closest(const Coord& p, float* dist = nullptr, Coord* normal = nullptr, float maxDist = 0,
+                const proj_detail::PFace** face = nullptr) const {
     float md = maxDist > 0 ? maxDist : diag_;
     float d = md;
     Coord q = p;
     auto* f = vcg::tri::GetClosestFaceBase(const_cast<PMesh&>(copy_), const_cast<Grid&>(grid_), p, md, d, q);
+    if (face) *face = f;
     if (f == nullptr) {
       if (dist) *dist = md;
       return p;
@@ -89,6 +92,15 @@ class SurfaceProjector {
     if (dist) *dist = d;
     if (normal) *normal = f->N();
     return q;
+  }
+
+  /// Is p within r of face f (a face of Mesh())? One point-face distance (see
+  /// MeshDistanceGrid::NearFace).
+  static bool NearFace(const proj_detail::PFace* f, const Coord& p, float r) {
+    if (f == nullptr) return false;
+    float d = r;
+    Coord q;
+    return vcg::face::PointDistanceBase(*f, p, d, q);
   }
 
   float Diagonal() const { return diag_; }
