@@ -264,18 +264,13 @@ class MeshDistanceGrid {
   void Test(uint32_t t, const vcg::Point3f& p, float& best) {
     if (lastQuery_[t] == query_) return;  // a face in several cells is measured once
     lastQuery_[t] = query_;
-    FaceView view;
-    for (int z = 0; z < 3; ++z) view.v[z].p = Corner3f(t, z);
-    // UpdateNormal::PerFaceNormalized: the cross product of the edges from corner 0, normalized
-    view.n = (view.cP(1) - view.cP(0)) ^ (view.cP(2) - view.cP(0));
-    view.n.Normalize();
-    vcg::Point3f q;
-    if (vcg::face::PointDistanceBase(view, p, best, q)) closest_ = t;
+    if (Measure(t, p, best)) closest_ = t;
   }
   /// vcg's point-face distance on face t if under d (then d is set and true returned).
   bool Measure(uint32_t t, const vcg::Point3f& p, float& d) const {
     FaceView view;
     for (int z = 0; z < 3; ++z) view.v[z].p = Corner3f(t, z);
+    // UpdateNormal::PerFaceNormalized: the cross product of the edges from corner 0, normalized
     view.n = (view.cP(1) - view.cP(0)) ^ (view.cP(2) - view.cP(0));
     view.n.Normalize();
     vcg::Point3f q;
