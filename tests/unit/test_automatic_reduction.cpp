@@ -604,7 +604,7 @@ TEST(ReductionParts, LonePairSkipsOnlySearchesThatFindNoRemoval) {
         for (int x : {a, b}) {
           auto cp2 = p.ed.Mark();
           AtomicOutcome c = p.comp.atomic().FindAndApply(
-              {x}, [&](const std::map<int, int>& bf, const std::map<int, int>& af) { return p.cancel.Reduces(bf, af); },
+              {x}, [&](const ValenceChanges& bf, const ValenceChanges& af) { return p.cancel.Reduces(bf, af); },
               "cancellation", false);
           p.ed.RollbackTo(cp2);
           removal = removal || bool(c);

@@ -569,7 +569,7 @@ class CompositeOperations {
     int n5 = 0;
     for (int v : group) n5 += ed_.Valence(v) == 5;
     const int survivorValence = n5 == 2 ? 5 : 7;
-    return ops_.FindAndApply(group, [&](const std::map<int, int>& before, const std::map<int, int>& after) {
+    return ops_.FindAndApply(group, [&](const ValenceChanges& before, const ValenceChanges& after) {
       int irregularBefore = 0, irregularAfter = 0, key = -2;
       for (auto& kv : after) {
         const int b = before.count(kv.first) ? before.at(kv.first) : 0;

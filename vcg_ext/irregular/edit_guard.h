@@ -188,9 +188,22 @@ class EditGuard {
     // once) against the input; a query looks no farther than just past the budget
     const float reach = float(1.01 * budget_) + 1e-12f;
     double mx = 0;
+    // Consecutive probes lie on one face or its neighbour: the input face found closest for
+    // the last one usually keeps the next within the budget, and then the search is skipped.
+    // The verdict is the same (the true distance is at most that face's); only mx may be
+    // larger, which the callers never see beyond "above the budget or not".
+    const proj_detail::PFace* hint = nullptr;
     auto probe = [&](const CoordType& p) {
-      float d = 0;
-      original_.Closest(vcg::Point3f::Construct(p), &d, nullptr, reach);
+      const vcg::Point3f q = vcg::Point3f::Construct(p);
+      float d = reach;
+      vcg::Point3f onHint;
+      if (hint != nullptr && vcg::face::PointDistanceBase(*hint, q, d, onHint) && double(d) <= budget_) {
+        mx = std::max(mx, double(d));
+        return true;
+      }
+      const proj_detail::PFace* f = nullptr;
+      original_.Closest(q, &d, nullptr, reach, &f);
+      if (f != nullptr) hint = f;
       mx = std::max(mx, double(d));
       return mx <= budget_;
     };

@@ -51,7 +51,7 @@ class LocalCancellation {
   bool CancelAround(ReductionReport& rep, int v) {
     GuardedEdit<MeshType> g(guard_, rep, {v});
     AtomicOutcome o = ops_.FindAndApply(
-        {v}, [&](const std::map<int, int>& b, const std::map<int, int>& a) { return Reduces(b, a); },
+        {v}, [&](const ValenceChanges& b, const ValenceChanges& a) { return Reduces(b, a); },
         "cancellation", false);
     if (!o) return false;
     std::vector<int> touched = state_.Changed(o);
@@ -71,7 +71,7 @@ class LocalCancellation {
     for (int x : vs) {
       if (!ed_.IsLive(x)) continue;
       AtomicOutcome c = ops_.FindAndApply(
-          {x}, [&](const std::map<int, int>& bf, const std::map<int, int>& af) { return Reduces(bf, af); },
+          {x}, [&](const ValenceChanges& bf, const ValenceChanges& af) { return Reduces(bf, af); },
           "cancellation", false);
       if (!c) continue;
       std::vector<int> changed = state_.Record(c, touched);
@@ -85,7 +85,7 @@ class LocalCancellation {
   /// among those it touches, leaves only valences 5-7, and touches no frozen vertex nor an
   /// excluded irregular vertex. These are exactly the atomic removals of sec. 6.2 (triple
   /// into one vertex, quadruple).
-  bool Reduces(const std::map<int, int>& before, const std::map<int, int>& after) const {
+  bool Reduces(const ValenceChanges& before, const ValenceChanges& after) const {
     int irrBefore = 0, irrAfter = 0;
     for (auto& kv : before) {
       if (state_.Frozen(kv.first)) return false;

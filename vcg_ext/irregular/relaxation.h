@@ -238,24 +238,6 @@ std::vector<char> CreaseLineVertices(MeshType& m, double angleDeg, int minEdges)
 
 namespace relax_detail {
 
-/// Would moving v to p turn one of its faces by more than acos(minCos)?
-template <class MeshType>
-bool MoveFolds(const VertexStar<MeshType>& st, typename MeshType::VertexType* v, const typename MeshType::CoordType& p,
-               double minCos) {
-  for (auto& c : st.corners) {
-    auto* f = c.f;
-    auto before = vcg::TriangleNormal(*f);
-    auto old = v->P();
-    v->P() = p;
-    auto after = vcg::TriangleNormal(*f);
-    v->P() = old;
-    double lb = before.Norm(), la = after.Norm();
-    if (la <= 1e-12 * (lb + 1e-30)) return true;
-    if (lb > 0 && double(before.dot(after)) / (lb * la) < minCos) return true;
-  }
-  return false;
-}
-
 /// Largest cosine of f's three corner angles (1 with a zero-length edge: a zero angle). Each
 /// edge and length once: p_j - p_i is exactly -(p_i - p_j), and a negated vector has the same
 /// norm and negates a dot product exactly, so this is the value corner by corner would give.
@@ -273,24 +255,44 @@ double MaxCornerCos(const FaceType* f) {
 template <class MeshType>
 double MinAngleAround(const VertexStar<MeshType>& st) {
   // acos is decreasing and correctly rounded (so monotone): the smallest angle is the acos of
-  // the largest cosine, one acos per star (MoveHurts calls this twice per relaxed vertex)
+  // the largest cosine, one acos per star
   double maxCos = -1.0;
   for (auto& c : st.corners) maxCos = std::max(maxCos, MaxCornerCos(c.f));
   return std::acos(std::max(-1.0, std::min(1.0, maxCos)));
 }
 
-/// A move is kept if it folds nothing and does not halve the smallest angle around the vertex
-/// (the simultaneous global solve can otherwise squeeze a single triangle).
+/// A move is kept if it folds nothing (no face of v turns by more than acos(minCos)) and does
+/// not halve the smallest angle around the vertex (the simultaneous global solve can otherwise
+/// squeeze a single triangle). One pass over the star at v's place, one with v at p: this runs
+/// for every vertex of every relaxation sweep.
 template <class MeshType>
 bool MoveHurts(const VertexStar<MeshType>& st, typename MeshType::VertexType* v, const typename MeshType::CoordType& p,
                double minCos) {
-  if (MoveFolds<MeshType>(st, v, p, minCos)) return true;
-  const double before = MinAngleAround<MeshType>(st);
-  auto old = v->P();
+  typedef typename MeshType::CoordType CoordType;
+  // the normals before the move: on the stack up to valence 16 (no allocation per vertex)
+  const size_t n = st.corners.size();
+  CoordType onStack[16];
+  std::vector<CoordType> onHeap(n > 16 ? n : 0);
+  CoordType* normalBefore = n > 16 ? onHeap.data() : onStack;
+  double maxCosBefore = -1.0, maxCosAfter = -1.0;
+  for (size_t i = 0; i < n; ++i) {
+    normalBefore[i] = vcg::TriangleNormal(*st.corners[i].f);
+    maxCosBefore = std::max(maxCosBefore, MaxCornerCos(st.corners[i].f));
+  }
+  const CoordType old = v->P();
   v->P() = p;
-  const double after = MinAngleAround<MeshType>(st);
+  bool folds = false;
+  for (size_t i = 0; i < n && !folds; ++i) {
+    const auto* f = st.corners[i].f;
+    const CoordType after = vcg::TriangleNormal(*f);
+    const double lb = normalBefore[i].Norm(), la = after.Norm();
+    folds = la <= 1e-12 * (lb + 1e-30) || (lb > 0 && double(normalBefore[i].dot(after)) / (lb * la) < minCos);
+    maxCosAfter = std::max(maxCosAfter, MaxCornerCos(f));
+  }
   v->P() = old;
-  return after < 0.5 * before;
+  if (folds) return true;
+  return std::acos(std::max(-1.0, std::min(1.0, maxCosAfter))) <
+         0.5 * std::acos(std::max(-1.0, std::min(1.0, maxCosBefore)));
 }
 
 template <class MeshType>

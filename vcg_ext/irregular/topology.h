@@ -155,6 +155,17 @@ int Valence(typename MeshType::VertexType* v, int maxValence = 4096) {
   typedef typename MeshType::FaceType FaceType;
   if (v->cVFp() == nullptr) return 0;
   const Corner<FaceType> start{v->VFp(), v->VFi()};
+  // As in StarOf: an interior fan closes counter-clockwise from the VF entry in one turn, and
+  // the rewind below would come back to `start` after a whole turn (the same count at half
+  // the walking); only a fan that meets a border, or runs past the bound, is redone.
+  {
+    Corner<FaceType> c = start;
+    for (int n = 1; n <= maxValence + 1; ++n) {
+      c = NextCornerCCW(c);
+      if (c.f == nullptr) break;
+      if (c.f == start.f && c.z == start.z) return n;
+    }
+  }
   Corner<FaceType> c = start;
   int guard = 0;
   for (;;) {  // rewind clockwise to the boundary, if there is one

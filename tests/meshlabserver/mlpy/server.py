@@ -9,6 +9,7 @@ scripts: filter scripts (.mlx) written from Python, runs under xvfb-run, the plu
 
 Debian's meshlabserver aborts on a script that leaves out a parameter of a filter, so every
 parameter is listed, in the filter's declaration order (the keyword order)."""
+import atexit
 import os
 import re
 import shutil
@@ -236,6 +237,9 @@ class Server:
         if not exe or not os.path.exists(exe):
             raise RuntimeError("no staged meshlabserver (set FI_STAGE or build build/stage)")
         work = tempfile.mkdtemp(prefix="mlpy_")
+        # The Result's output_path lives here and callers read it after run() returns: the
+        # folder goes when the process ends, not before (hundreds of runs must not pile up in /tmp).
+        atexit.register(shutil.rmtree, work, True)
         output_ply = os.path.abspath(output_ply or os.path.join(work, "out.ply"))
         if isinstance(filters, (str, os.PathLike)):
             script = str(filters)
