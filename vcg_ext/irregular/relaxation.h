@@ -326,11 +326,20 @@ RelaxReport LocalRelax(MeshType& m, const std::vector<int>& region, const Surfac
   auto t0 = std::chrono::steady_clock::now();
   RelaxReport rep;
   // O(region x sweeps): called after every edit, so nothing here may be sized by the mesh.
+  // Only positions change here, never the connectivity: each star is walked once per call
+  // instead of once per sweep and once more for the normals (the walks were an eighth of
+  // Automatic Reduction's time). The buffer is reused from call to call (LocalRelax does
+  // not call itself).
+  static thread_local std::vector<VertexStar<MeshType>> stars;
+  stars.clear();
+  stars.reserve(region.size());
+  for (int v : region) stars.push_back(StarOf<MeshType>(&m.vert[size_t(v)]));
   for (int it = 0; it < opt.iterations; ++it) {
-    for (int v : region) {
+    for (size_t k = 0; k < region.size(); ++k) {
+      const int v = region[k];
       if (!relax_detail::Movable(m, v, creaseIn)) continue;
       auto* vp = &m.vert[size_t(v)];
-      VertexStar<MeshType> st = StarOf<MeshType>(vp);
+      const VertexStar<MeshType>& st = stars[k];
       if (st.neighbors.empty()) continue;
       if (st.boundary) {
         if (!relax_detail::SlidesOnBoundary(st, opt)) continue;  // fixed: no curve to slide on, or a corner
@@ -370,8 +379,8 @@ RelaxReport LocalRelax(MeshType& m, const std::vector<int>& region, const Surfac
       ++rep.moved;
     }
   }
-  for (int v : region)
-    for (auto& c : StarOf<MeshType>(&m.vert[size_t(v)]).corners) c.f->N() = vcg::TriangleNormal(*c.f).Normalize();
+  for (const VertexStar<MeshType>& st : stars)
+    for (auto& c : st.corners) c.f->N() = vcg::TriangleNormal(*c.f).Normalize();
   rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return rep;
 }
