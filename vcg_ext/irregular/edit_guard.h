@@ -21,6 +21,7 @@
 #include <map>
 #include <unordered_map>
 #include <vector>
+#include <utility>
 
 #include <vcg/space/distance3.h>
 
@@ -255,7 +256,11 @@ class EditGuard {
       return (uint64_t(x & 0x1FFFFF) << 42) | (uint64_t(y & 0x1FFFFF) << 21) | uint64_t(z & 0x1FFFFF);
     };
     auto cellOf = [&](float x) { return int64_t(std::floor(x / cellSize)); };
-    std::unordered_map<uint64_t, std::vector<int>> faceCells;
+    // (cell key, face) pairs sorted by key then face: each cell's faces in increasing face
+    // order, as a hash map of per-cell vectors filled face by face would hold them, without
+    // a heap allocation per cell (the buffer is reused from edit to edit)
+    std::vector<std::pair<uint64_t, int>>& faceCells = faceCells_;
+    faceCells.clear();
     std::vector<vcg::Triangle3<float>> tri;
     std::vector<vcg::Box3<float>> boxes;
     tri.reserve(all.size());
@@ -269,8 +274,9 @@ class EditGuard {
       boxes.push_back(b);
       for (int64_t x = cellOf(b.min[0]); x <= cellOf(b.max[0]); ++x)
         for (int64_t y = cellOf(b.min[1]); y <= cellOf(b.max[1]); ++y)
-          for (int64_t z = cellOf(b.min[2]); z <= cellOf(b.max[2]); ++z) faceCells[key(x, y, z)].push_back(int(k));
+          for (int64_t z = cellOf(b.min[2]); z <= cellOf(b.max[2]); ++z) faceCells.emplace_back(key(x, y, z), int(k));
     }
+    std::sort(faceCells.begin(), faceCells.end());
     // A face spans several cells: measured once per sample (lastSample); and not at all when
     // its box is already farther than the closest face so far (the distance to a triangle is
     // at least the distance to its box; the margin covers rounding), which cannot change the
@@ -292,9 +298,10 @@ class EditGuard {
       for (int64_t x = cellOf(p[0]) - 1; x <= cellOf(p[0]) + 1; ++x)
         for (int64_t y = cellOf(p[1]) - 1; y <= cellOf(p[1]) + 1; ++y)
           for (int64_t z = cellOf(p[2]) - 1; z <= cellOf(p[2]) + 1; ++z) {
-            auto it = faceCells.find(key(x, y, z));
-            if (it == faceCells.end()) continue;
-            for (int t : it->second) {
+            const uint64_t cell = key(x, y, z);
+            auto it = std::lower_bound(faceCells.begin(), faceCells.end(), std::make_pair(cell, -1));
+            for (; it != faceCells.end() && it->first == cell; ++it) {
+              const int t = it->second;
               if (lastSample[size_t(t)] == i) continue;
               lastSample[size_t(t)] = i;
               if (boxDistance(boxes[size_t(t)], p) > best * (1 + 1e-4f)) continue;
@@ -426,6 +433,7 @@ class EditGuard {
   double samplesPerEdge_ = 0;   ///< input samples per edge length besides sharp edges, raised by retries
   SampleGrid originalSamples_;  ///< the input's samples, for DeviationAround()
   StampSet faceSeen_;           ///< DeviationAround's set of the faces it gathered
+  std::vector<std::pair<uint64_t, int>> faceCells_;  ///< DeviationAround's faces by grid cell
 };
 
 /// The scope of one guarded edit: remembers the checkpoint and the angle quality before;
