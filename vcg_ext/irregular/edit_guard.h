@@ -190,18 +190,17 @@ class EditGuard {
     const float reach = float(1.01 * budget_) + 1e-12f;
     double mx = 0;
     // Consecutive probes lie on one face or its neighbour: the input face found closest for
-    // the last one usually keeps the next within the budget, and then the search is skipped.
-    // The verdict is the same (the true distance is at most that face's); only mx may be
-    // larger, which the callers never see beyond "above the budget or not".
+    // the last one usually keeps the next within the budget, and then the search is skipped
+    // (as OneSidedHausdorff does, quality.h). The verdict is the same: the true distance is at
+    // most that face's, and the radius is the largest float not above the budget. Such a
+    // probe leaves mx as it is, which the callers never see beyond "above the budget or not".
+    float within = float(budget_);
+    if (double(within) > budget_) within = std::nextafter(within, 0.f);
     const proj_detail::PFace* hint = nullptr;
     auto probe = [&](const CoordType& p) {
       const vcg::Point3f q = vcg::Point3f::Construct(p);
-      float d = reach;
-      vcg::Point3f onHint;
-      if (hint != nullptr && vcg::face::PointDistanceBase(*hint, q, d, onHint) && double(d) <= budget_) {
-        mx = std::max(mx, double(d));
-        return true;
-      }
+      if (SurfaceProjector::NearFace(hint, q, within)) return true;
+      float d = 0;
       const proj_detail::PFace* f = nullptr;
       original_.Closest(q, &d, nullptr, reach, &f);
       if (f != nullptr) hint = f;

@@ -251,16 +251,6 @@ double MaxCornerCos(const FaceType* f) {
                    double(-e20.dot(e12)) / (l20 * l12)});
 }
 
-/// Smallest angle (radians) of the faces around v.
-template <class MeshType>
-double MinAngleAround(const VertexStar<MeshType>& st) {
-  // acos is decreasing and correctly rounded (so monotone): the smallest angle is the acos of
-  // the largest cosine, one acos per star
-  double maxCos = -1.0;
-  for (auto& c : st.corners) maxCos = std::max(maxCos, MaxCornerCos(c.f));
-  return std::acos(std::max(-1.0, std::min(1.0, maxCos)));
-}
-
 /// A move is kept if it folds nothing (no face of v turns by more than acos(minCos)) and does
 /// not halve the smallest angle around the vertex (the simultaneous global solve can otherwise
 /// squeeze a single triangle). One pass over the star at v's place, one with v at p: this runs
@@ -291,6 +281,8 @@ bool MoveHurts(const VertexStar<MeshType>& st, typename MeshType::VertexType* v,
   }
   v->P() = old;
   if (folds) return true;
+  // the smallest angles after and before: acos is decreasing and correctly rounded (so
+  // monotone), so each is the acos of the largest cosine, one acos per side
   return std::acos(std::max(-1.0, std::min(1.0, maxCosAfter))) <
          0.5 * std::acos(std::max(-1.0, std::min(1.0, maxCosBefore)));
 }

@@ -31,9 +31,6 @@ class ValenceChanges {
     Assign(l);
     return *this;
   }
-  explicit ValenceChanges(const std::map<int, int>& m) {
-    for (auto& kv : m) Insert(kv.first, kv.second);
-  }
 
   /// Adds (key, value) unless key is in already; false then (std::map::insert).
   bool Insert(int key, int value) {
