@@ -464,8 +464,18 @@ class GuardedEdit {
   /// nothing yet, so a caller with checks of its own (boundary_reduction.h) can still roll
   /// back to a mark taken before this edit began, and calls Keep only when it keeps the edit.
   bool Judge(const std::vector<int>& touched) {
-    const GuardVerdict v = g_.Judge(touched, angleBefore_);
+    const GuardVerdict v = Verdict(touched);
     if (v == GuardVerdict::Kept) return true;
+    Refuse(v);
+    return false;
+  }
+  /// The guard's verdict, without undoing or recording anything: for a caller that has
+  /// another way to try when it fails (then Refuse, or Keep).
+  GuardVerdict Verdict(const std::vector<int>& touched) { return g_.Judge(touched, angleBefore_); }
+  bool Passes(const std::vector<int>& touched) { return Verdict(touched) == GuardVerdict::Kept; }
+  /// Undoes the edit and records the refusal `v` (not Kept): the report's count by reason,
+  /// the subjects' undone count (leftover reasons) and the region's effort bound.
+  void Refuse(GuardVerdict v) {
     Undo();
     (v == GuardVerdict::Frozen     ? rep_.undoneFrozen
      : v == GuardVerdict::Angle    ? rep_.undoneAngle
@@ -476,11 +486,7 @@ class GuardedEdit {
                        : v == GuardVerdict::Angle    ? Refusal::Angle
                        : v == GuardVerdict::Boundary ? Refusal::Boundary
                                                      : Refusal::Hausdorff);
-    return false;
   }
-  /// The guard's verdict alone, without undoing or recording anything: for a caller that
-  /// has another way to try when it fails.
-  bool Passes(const std::vector<int>& touched) { return g_.Judge(touched, angleBefore_) == GuardVerdict::Kept; }
   /// The edit is kept: stamps, running count, and (outermost edit) the journal's commit.
   void Keep(const std::vector<int>& touched) { g_.state().Kept(touched); }
   void Undo() { g_.ed().RollbackTo(cp_); }

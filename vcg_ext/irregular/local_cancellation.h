@@ -64,9 +64,10 @@ class LocalCancellation {
     return true;
   }
 
-  /// Applies a removal (sec. 6.2) involving one of the vertices, if one exists; adds what it
-  /// changed to touched and relaxes there (unguarded: the caller guards).
-  bool RemovalAt(const std::vector<int>& vs, std::vector<int>& touched, bool relax = true) {
+  /// Applies a removal (sec. 6.2) involving one of the vertices, if one exists, and adds what
+  /// it changed to touched. Topology only: the caller relaxes and guards (the pair transport
+  /// relaxes its whole route once).
+  bool RemovalAt(const std::vector<int>& vs, std::vector<int>& touched) {
     if (vs.size() == 2 && LonePair(vs[0], vs[1])) return false;
     for (int x : vs) {
       if (!ed_.IsLive(x)) continue;
@@ -74,8 +75,7 @@ class LocalCancellation {
           {x}, [&](const ValenceChanges& bf, const ValenceChanges& af) { return Reduces(bf, af); },
           "cancellation", false);
       if (!c) continue;
-      std::vector<int> changed = state_.Record(c, touched);
-      if (relax) guard_.RelaxAround(changed);
+      state_.Record(c, touched);
       return true;
     }
     return false;

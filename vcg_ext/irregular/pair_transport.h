@@ -221,9 +221,11 @@ class PairTransport {
   /// probe (no relaxation, no fold check) first finds whether and after how many steps a
   /// removal happens. A route that reaches one is relaxed as a whole and kept if no triangle
   /// turned over and the guard passes it, after one more relaxation if needed (on bunny00,
-  /// 3965 of 4367 routes); only otherwise is it redone step by step, with a relaxation and the
-  /// fold check after every step (which rescues about one in ten of the rest). Relaxing each
-  /// step of every route cost 15% more instructions in all, for about the same counts.
+  /// 3965 of 4367 routes); otherwise it is undone, and the refusal counts against the region
+  /// (a turned-over triangle as an angle refusal). Redoing such a route step by step, with a
+  /// relaxation and the fold check after every step, rescued 41 of 402 on bunny00 at a tenth
+  /// of the whole reduction's time, and left about as many irregular vertices in the end
+  /// (bunny00 / knot1 / mushroom / elephant: 68 / 52 / 61 / 127 with it, 0.9.3).
   bool TryMove(ReductionReport& rep, int v5, int v7, const PairStep& step, int maxSteps, int& successes,
                std::vector<int>* touchedOut) {
     GuardedEdit<MeshType> g(guard_, rep, {v5, v7});
@@ -232,7 +234,7 @@ class PairTransport {
     {
       const bool folds = ed_.geometry().checkFolds;
       ed_.geometry().checkFolds = false;
-      reach = MoveUntilRemoval(v5, v7, step, maxSteps, false, touched);
+      reach = MoveUntilRemoval(v5, v7, step, maxSteps, touched);
       ed_.geometry().checkFolds = folds;
     }
     if (reach < 0) {
@@ -242,36 +244,33 @@ class PairTransport {
     // The probe's route, relaxed as a whole: usually as good as the same route relaxed step
     // by step, at a fraction of the cost (the steps' 2-rings overlap).
     guard_.RelaxAround(touched);
-    bool good = !guard_.FoldsAround(touched);
-    if (good && !g.Passes(touched)) {
+    if (guard_.FoldsAround(touched)) {
+      g.Undo();
+      ++rep.undone;
+      return false;
+    }
+    GuardVerdict verdict = g.Verdict(touched);
+    if (verdict != GuardVerdict::Kept) {
       guard_.RelaxAround(touched);
-      good = g.Passes(touched);
+      verdict = g.Verdict(touched);
     }
-    if (good) {
-      g.Keep(touched);
-      if (touchedOut) touchedOut->insert(touchedOut->end(), touched.begin(), touched.end());
-      ++successes;
-      rep.pairSteps += reach;
-      return true;
+    if (verdict != GuardVerdict::Kept) {
+      g.Refuse(verdict);
+      ++rep.undone;
+      return false;
     }
-    g.Undo();
-    touched.assign({v5, v7});
-    const int steps = MoveUntilRemoval(v5, v7, step, reach + 2, true, touched);
-    if (steps >= 0 && g.Accept(touched)) {
-      if (touchedOut) touchedOut->insert(touchedOut->end(), touched.begin(), touched.end());
-      ++successes;
-      rep.pairSteps += steps;
-      return true;
-    }
-    if (steps >= 0) ++rep.undone;
-    g.Undo();
-    return false;
+    g.Keep(touched);
+    if (touchedOut) touchedOut->insert(touchedOut->end(), touched.begin(), touched.end());
+    ++successes;
+    rep.pairSteps += reach;
+    return true;
   }
 
   /// Steps the pair (a, b) with `step` until a removal (sec. 6.2) applies next to it; when no
-  /// step is possible, one more step in any direction may set the removal up. Returns the
-  /// number of pair steps taken, or -1 if no removal happened (the caller undoes).
-  int MoveUntilRemoval(int a, int b, const PairStep& step, int maxSteps, bool relax, std::vector<int>& touched) {
+  /// step is possible, one more step in any direction may set the removal up. Topology only:
+  /// nothing is relaxed (TryMove relaxes the route). Returns the number of pair steps taken,
+  /// or -1 if no removal happened (the caller undoes).
+  int MoveUntilRemoval(int a, int b, const PairStep& step, int maxSteps, std::vector<int>& touched) {
     for (int s = 0; s < maxSteps; ++s) {
       auto cp = ed_.Mark();
       AtomicOutcome o = step(a, b);
@@ -279,20 +278,19 @@ class PairTransport {
       for (auto& kv : o.changes) ok = ok && !state_.Frozen(kv.first);
       if (!ok) {
         ed_.RollbackTo(cp);
-        return StepAndCancel(a, b, touched, relax) ? s + 1 : -1;
+        return StepAndCancel(a, b, touched) ? s + 1 : -1;
       }
       a = o.irregular[0];
       b = o.irregular[1];
       state_.Record(o, touched);
-      if (relax) guard_.RelaxAround({a, b});
-      if (cancel_.RemovalAt({a, b}, touched, relax)) return s + 1;
+      if (cancel_.RemovalAt({a, b}, touched)) return s + 1;
     }
     return -1;
   }
 
   /// One pair step, in the first of the six directions after which a removal applies. A step
   /// its dry run refuses (blocked, or touching a frozen vertex) is not tried.
-  bool StepAndCancel(int v5, int v7, std::vector<int>& touched, bool relax = true) {
+  bool StepAndCancel(int v5, int v7, std::vector<int>& touched) {
     for (int dir = 0; dir < 6; ++dir) {
       AtomicPrediction pr = ops_.PredictMovePair57(v5, v7, dir);
       bool ok = bool(pr);
@@ -303,7 +301,7 @@ class PairTransport {
       AtomicOutcome o = ops_.Apply(pr);
       if (o) {
         state_.Record(o, touched);
-        if (cancel_.RemovalAt({o.irregular[0], o.irregular[1]}, touched, relax)) return true;
+        if (cancel_.RemovalAt({o.irregular[0], o.irregular[1]}, touched)) return true;
       }
       touched.resize(mark);
       ed_.RollbackTo(cp);
