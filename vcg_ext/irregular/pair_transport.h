@@ -221,11 +221,13 @@ class PairTransport {
   /// probe (no relaxation, no fold check) first finds whether and after how many steps a
   /// removal happens. A route that reaches one is relaxed as a whole and kept if no triangle
   /// turned over and the guard passes it, after one more relaxation if needed (on bunny00,
-  /// 3965 of 4367 routes); otherwise it is undone, and the refusal counts against the region
-  /// (a turned-over triangle as an angle refusal). Redoing such a route step by step, with a
+  /// 3965 of 4367 routes); otherwise it is undone, and the guard's refusal counts against the
+  /// region (a route that turned a triangle over is undone without counting: that is the
+  /// route's fault, not the region's; the quick set's counts were the same either way). Redoing such a route step by step, with a
   /// relaxation and the fold check after every step, rescued 41 of 402 on bunny00 at a tenth
   /// of the whole reduction's time, and left about as many irregular vertices in the end
-  /// (bunny00 / knot1 / mushroom / elephant: 68 / 52 / 61 / 127 with it, 0.9.3).
+  /// (bunny00 / knot1 / mushroom / elephant: 68 / 52 / 61 / 127 with it, 0.9.3; 72 / 54 / 59 / 128
+  /// without, 0.9.4, with the region bound raised from 12 to 20 to match).
   bool TryMove(ReductionReport& rep, int v5, int v7, const PairStep& step, int maxSteps, int& successes,
                std::vector<int>* touchedOut) {
     GuardedEdit<MeshType> g(guard_, rep, {v5, v7});
