@@ -289,14 +289,43 @@ class EditGuard {
       }
       return std::sqrt(d2);
     };
+    // Only "above the budget or not" matters: a sample with any face within its bound (the
+    // budget; on a crease also the crease budget) cannot be farther than that from its
+    // closest face, whichever that is, so it is harmless and its search stops there. The face
+    // that showed the last sample harmless is tried first (consecutive samples are close):
+    // on meshes with many sharp edges (thin parts) most samples then cost one distance.
+    int sampleHint = -1;
+    auto harmless = [&](int t, const vcg::Point3f& p, float bound) {
+      float d;
+      vcg::Point3f q;
+      vcg::TrianglePointDistance(tri[size_t(t)], p, d, q);
+      return d <= bound;
+    };
+    // A sample counts only if its closest face is a changed one on its side (below): one
+    // facing away from every changed face (the other sheet of a thin part) cannot count.
+    std::vector<vcg::Point3f>& changedNormals = changedNormals_;
+    changedNormals.clear();
+    for (size_t k = 0; k < changed.size(); ++k) {
+      const vcg::Triangle3<float>& t = tri[k];
+      changedNormals.push_back((t.P(1) - t.P(0)) ^ (t.P(2) - t.P(0)));
+    }
+    auto facesSome = [&](const vcg::Point3f& n) {
+      for (const vcg::Point3f& fn : changedNormals)
+        if (n.dot(fn) > 0) return true;
+      return false;
+    };
     for (int i : near) {
       const vcg::Point3f& p = originalSamples_.Point(i);
+      const float bound = float(sampleOnCrease_[size_t(i)] ? std::min(budget_, creaseBudget_) : budget_);
+      if (sampleHint >= 0 && harmless(sampleHint, p, bound)) continue;
+      if (!facesSome(originalSamples_.Normal(i))) continue;
       float best = std::numeric_limits<float>::max();
       int bestFace = -1;
+      bool done = false;
       // faces within 2 * budget of p are in p's cell or the 26 around it
-      for (int64_t x = cellOf(p[0]) - 1; x <= cellOf(p[0]) + 1; ++x)
-        for (int64_t y = cellOf(p[1]) - 1; y <= cellOf(p[1]) + 1; ++y)
-          for (int64_t z = cellOf(p[2]) - 1; z <= cellOf(p[2]) + 1; ++z) {
+      for (int64_t x = cellOf(p[0]) - 1; x <= cellOf(p[0]) + 1 && !done; ++x)
+        for (int64_t y = cellOf(p[1]) - 1; y <= cellOf(p[1]) + 1 && !done; ++y)
+          for (int64_t z = cellOf(p[2]) - 1; z <= cellOf(p[2]) + 1 && !done; ++z) {
             const uint64_t cell = key(x, y, z);
             auto it = std::lower_bound(faceCells.begin(), faceCells.end(), std::make_pair(cell, -1));
             for (; it != faceCells.end() && it->first == cell; ++it) {
@@ -307,17 +336,25 @@ class EditGuard {
               float d;
               vcg::Point3f q;
               vcg::TrianglePointDistance(tri[size_t(t)], p, d, q);
+              if (d <= bound) {
+                sampleHint = t;
+                done = true;
+                break;
+              }
               if (d < best) best = d, bestFace = t;
             }
           }
+      if (done) continue;
       // nothing within two budgets among the edited faces around: either the sample belongs
       // elsewhere (another part of the surface) or the edit moved away from it
       if (bestFace < 0) continue;
       if (size_t(bestFace) >= changed.size()) continue;  // closest to an unchanged face
       const vcg::Triangle3<float>& t = tri[size_t(bestFace)];
       if (originalSamples_.Normal(i).dot((t.P(1) - t.P(0)) ^ (t.P(2) - t.P(0))) <= 0) continue;
+      // It was not harmless, so it is beyond its bound: the verdict is known
       mx = std::max(mx, double(best));
       if (sampleOnCrease_[size_t(i)]) *crease = std::max(*crease, double(best));
+      return mx;
     }
     return mx;
   }
@@ -433,6 +470,7 @@ class EditGuard {
   SampleGrid originalSamples_;  ///< the input's samples, for DeviationAround()
   StampSet faceSeen_;           ///< DeviationAround's set of the faces it gathered
   std::vector<std::pair<uint64_t, int>> faceCells_;  ///< DeviationAround's faces by grid cell
+  std::vector<vcg::Point3f> changedNormals_;          ///< ... and its changed faces' normals
 };
 
 /// The scope of one guarded edit: remembers the checkpoint and the angle quality before;
