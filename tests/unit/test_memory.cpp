@@ -304,6 +304,11 @@ TEST(MemoryCompaction, AReductionThatDeletesElementsEndsWithTheAdjacencyARebuild
   // the final relaxation, comes just before the compaction)
   size_t holes = 0;
   ReductionOptions opt;
+  // A coarse mesh: at the default 0.5% the final check can overshoot, and the run then undoes
+  // every edit, leaving nothing to compact (under the sanitizers' build, on vcglib 2025.07's
+  // remeshing of this input, with 0.9.4: 665 -> 665 after two budget retries). This test is
+  // about the compaction, not the budget: at 1%, 665 -> 65 there.
+  opt.hausdorffBudgetPercent = 1.0;
   opt.progress = [&](int, const char*) {
     holes = std::max(holes, m.vert.size() - size_t(m.vn) + m.face.size() - size_t(m.fn));
     return true;
