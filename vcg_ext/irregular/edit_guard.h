@@ -349,8 +349,7 @@ class EditGuard {
       // elsewhere (another part of the surface) or the edit moved away from it
       if (bestFace < 0) continue;
       if (size_t(bestFace) >= changed.size()) continue;  // closest to an unchanged face
-      const vcg::Triangle3<float>& t = tri[size_t(bestFace)];
-      if (originalSamples_.Normal(i).dot((t.P(1) - t.P(0)) ^ (t.P(2) - t.P(0))) <= 0) continue;
+      if (originalSamples_.Normal(i).dot(changedNormals[size_t(bestFace)]) <= 0) continue;
       // It was not harmless, so it is beyond its bound: the verdict is known
       mx = std::max(mx, double(best));
       if (sampleOnCrease_[size_t(i)]) *crease = std::max(*crease, double(best));
@@ -510,7 +509,6 @@ class GuardedEdit {
   /// The guard's verdict, without undoing or recording anything: for a caller that has
   /// another way to try when it fails (then Refuse, or Keep).
   GuardVerdict Verdict(const std::vector<int>& touched) { return g_.Judge(touched, angleBefore_); }
-  bool Passes(const std::vector<int>& touched) { return Verdict(touched) == GuardVerdict::Kept; }
   /// Undoes the edit and records the refusal `v` (not Kept): the report's count by reason,
   /// the subjects' undone count (leftover reasons) and the region's effort bound.
   void Refuse(GuardVerdict v) {
