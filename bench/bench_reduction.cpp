@@ -157,6 +157,8 @@ int main(int argc, char** argv) {
                 Summarize(m).eulerCharacteristic, r.irregularBefore, r.irregularAfter, 100.0 * r.irregularAfter / m.vn,
                 HausdorffPercent(m, input), s.minAngleDeg, 100 * s.shareBelow30,
                 std::chrono::duration<double>(t1 - t0).count(), std::chrono::duration<double>(t2 - t1).count(), r.budgetRetries, int(r.gaveUp.size()), r.gaveUpVertices, r.allUndone ? " (all undone)" : "");
+    std::printf("  %s; undone %d (angle %d, Hausdorff %d, frozen %d, boundary %d)\n", r.leftovers.Summary().c_str(),
+                r.undone, r.undoneAngle, r.undoneHausdorff, r.undoneFrozen, r.undoneBoundary);
     std::fflush(stdout);
   }
   const double peak = StatusMiB("VmHWM");

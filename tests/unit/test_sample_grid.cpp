@@ -62,4 +62,40 @@ TEST(SampleGrid, BoxQueryFindsExactlyThePointsInside) {
   EXPECT_TRUE(empty.InBox(exact).empty());
 }
 
+TEST(SampleGrid, SamplesAtOnePointWithOneTagAreOnePointWithTheirDistinctNormals) {
+  const vcg::Point3f a(0.5f, 0.5f, 0.5f), b(1.5f, 0.5f, -0.f), b0(1.5f, 0.5f, 0.f);
+  const vcg::Point3f up(0, 0, 1), down(0, 0, -1), side(1, 0, 0);
+  // a three times (two normals, one of them twice), b twice with tag 0 (as -0 and 0) and once
+  // with tag 1 (a crease sample stays apart: its bound differs)
+  const std::vector<vcg::Point3f> pts{a, b, a, b0, a, b};
+  const std::vector<vcg::Point3f> nrm{up, up, down, side, up, down};
+  const std::vector<char> tags{0, 0, 0, 0, 0, 1};
+  SampleGrid grid;
+  grid.Build(pts, nrm, 0.25, tags);
+  ASSERT_EQ(grid.Size(), 3u);
+  // merged in the order first seen
+  EXPECT_EQ(grid.Point(0), a);
+  EXPECT_EQ(grid.Point(1), b);
+  EXPECT_EQ(grid.Point(2), b);
+  EXPECT_EQ(grid.Tag(0), 0);
+  EXPECT_EQ(grid.Tag(1), 0);
+  EXPECT_EQ(grid.Tag(2), 1);
+  EXPECT_EQ(std::vector<vcg::Point3f>(grid.NormalsBegin(0), grid.NormalsEnd(0)), (std::vector<vcg::Point3f>{up, down}));
+  EXPECT_EQ(std::vector<vcg::Point3f>(grid.NormalsBegin(1), grid.NormalsEnd(1)), (std::vector<vcg::Point3f>{up, side}));
+  EXPECT_EQ(std::vector<vcg::Point3f>(grid.NormalsBegin(2), grid.NormalsEnd(2)), (std::vector<vcg::Point3f>{down}));
+  // "does any of its normals ..." answers as over the separate samples
+  auto facesX = [](const vcg::Point3f& n) { return n[0] > 0; };
+  EXPECT_FALSE(grid.AnyNormal(0, facesX));
+  EXPECT_TRUE(grid.AnyNormal(1, facesX));
+  EXPECT_FALSE(grid.AnyNormal(2, facesX));
+  // a box around b finds both of b's points once each; without tags everything at b is one
+  std::vector<int> got = grid.InBox(vcg::Box3<float>(b - vcg::Point3f(0.1f, 0.1f, 0.1f), b + vcg::Point3f(0.1f, 0.1f, 0.1f)));
+  std::sort(got.begin(), got.end());
+  EXPECT_EQ(got, (std::vector<int>{1, 2}));
+  SampleGrid untagged;
+  untagged.Build(pts, nrm, 0.25);
+  ASSERT_EQ(untagged.Size(), 2u);
+  EXPECT_EQ(untagged.NormalsEnd(1) - untagged.NormalsBegin(1), 3);
+}
+
 }  // namespace

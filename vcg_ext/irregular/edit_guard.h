@@ -316,9 +316,10 @@ class EditGuard {
     };
     for (int i : near) {
       const vcg::Point3f& p = originalSamples_.Point(i);
-      const float bound = float(sampleOnCrease_[size_t(i)] ? std::min(budget_, creaseBudget_) : budget_);
+      const bool onCrease = originalSamples_.Tag(i) != 0;
+      const float bound = float(onCrease ? std::min(budget_, creaseBudget_) : budget_);
       if (sampleHint >= 0 && harmless(sampleHint, p, bound)) continue;
-      if (!facesSome(originalSamples_.Normal(i))) continue;
+      if (!originalSamples_.AnyNormal(i, facesSome)) continue;
       float best = std::numeric_limits<float>::max();
       int bestFace = -1;
       bool done = false;
@@ -349,10 +350,11 @@ class EditGuard {
       // elsewhere (another part of the surface) or the edit moved away from it
       if (bestFace < 0) continue;
       if (size_t(bestFace) >= changed.size()) continue;  // closest to an unchanged face
-      if (originalSamples_.Normal(i).dot(changedNormals[size_t(bestFace)]) <= 0) continue;
+      const vcg::Point3f& bestNormal = changedNormals[size_t(bestFace)];
+      if (!originalSamples_.AnyNormal(i, [&](const vcg::Point3f& n) { return n.dot(bestNormal) > 0; })) continue;
       // It was not harmless, so it is beyond its bound: the verdict is known
       mx = std::max(mx, double(best));
-      if (sampleOnCrease_[size_t(i)]) *crease = std::max(*crease, double(best));
+      if (onCrease) *crease = std::max(*crease, double(best));
       return mx;
     }
     return mx;
@@ -366,12 +368,15 @@ class EditGuard {
   void BuildInputSamples(double perEdge) {
     const double h = MeanEdgeLength(m_);
     std::vector<vcg::Point3f> samples, normals;
-    sampleOnCrease_.clear();
+    std::vector<char> onCrease;  // per sample: on a crease line (opt.creaseDeg)
     SharpEdgeSamples(original_.Mesh(), opt_.sharpEdgeDeg, opt_.creaseDeg, opt_.creaseMinEdges, samples, normals,
-                     sampleOnCrease_);
+                     onCrease);
     if (perEdge > 0) ThinnedSurfaceSamples(original_.Mesh(), h / perEdge, samples, normals);
-    sampleOnCrease_.resize(samples.size(), 0);
-    originalSamples_.Build(std::move(samples), std::move(normals), h);
+    onCrease.resize(samples.size(), 0);
+    // a sample is a point and a face's normal: the points repeat (a vertex once per sharp edge
+    // and face around it), and the grid merges them (sample_grid.h); the tag keeps crease
+    // samples apart (their bound is the crease budget)
+    originalSamples_.Build(samples, normals, h, onCrease);
   }
 
   /// Ends and midpoints of the edges of m whose dihedral angle exceeds angleDeg, with the
@@ -464,7 +469,6 @@ class EditGuard {
   const std::vector<char>* crease_;  ///< vertices RelaxAround never moves (the input's crease lines)
   double budget_ = 0;           ///< per-edit Hausdorff budget (absolute), tightened by retries
   double creaseBudget_ = 0;     ///< per-edit budget of the crease samples (absolute)
-  std::vector<char> sampleOnCrease_;  ///< per input sample: on a crease (opt.creaseDeg)
   double samplesPerEdge_ = 0;   ///< input samples per edge length besides sharp edges, raised by retries
   SampleGrid originalSamples_;  ///< the input's samples, for DeviationAround()
   StampSet faceSeen_;           ///< DeviationAround's set of the faces it gathered
