@@ -96,6 +96,9 @@ int main(int argc, char** argv) {
     else if (key == "minAngle") opt.minAngleDeg = v;
     else if (key == "budget") opt.hausdorffBudgetPercent = v;
     else if (key == "maxRefusals") opt.maxRefusalsPerRegion = int(v);
+    else if (key == "angleRepairRounds") opt.angleRepairRounds = int(v);
+    else if (key == "angleRepairSlack") opt.angleRepairSlackDeg = v;
+    else if (key == "travelReference") opt.travelReferenceVertices = int(v);
     else if (key == "timeLimit") opt.timeLimitSeconds = v > 0 ? v : opt.timeLimitSeconds;
     else if (key == "memory") memory = v != 0;
     else if (key == "loadOnly") loadOnly = v != 0;
@@ -157,7 +160,7 @@ int main(int argc, char** argv) {
                 Summarize(m).eulerCharacteristic, r.irregularBefore, r.irregularAfter, 100.0 * r.irregularAfter / m.vn,
                 HausdorffPercent(m, input), s.minAngleDeg, 100 * s.shareBelow30,
                 std::chrono::duration<double>(t1 - t0).count(), std::chrono::duration<double>(t2 - t1).count(), r.budgetRetries, int(r.gaveUp.size()), r.gaveUpVertices, r.allUndone ? " (all undone)" : "");
-    std::printf("  %s; undone %d (angle %d, Hausdorff %d, frozen %d, boundary %d)\n", r.leftovers.Summary().c_str(),
+    std::printf("  %s; travel %d; undone %d (angle %d, Hausdorff %d, frozen %d, boundary %d)\n", r.leftovers.Summary().c_str(), r.travel,
                 r.undone, r.undoneAngle, r.undoneHausdorff, r.undoneFrozen, r.undoneBoundary);
     std::fflush(stdout);
   }

@@ -154,6 +154,10 @@ FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par
            "%d stretched 5-7 pairs split and cancelled, %d edits undone (angle or Hausdorff limit)",
            rep.typeSplits, rep.localCancellations, rep.transports, rep.glides, rep.pairSteps, rep.splitAbsorptions,
            rep.undone);
+  ctx.Logf("Pair travel: %d steps (maxTravel %d%s); %d routes kept after their sharpest triangles were relaxed again",
+           rep.travel, opt.maxTravel,
+           rep.travel != opt.maxTravel ? ", grown with the square root of the vertex count above 20000" : "",
+           rep.angleRepairs);
   ctx.Logf("Undone by the edit guard: %d for a triangle under the minimum angle, %d for leaving the Hausdorff budget, "
            "%d for touching the protected selection, %d for adding boundary irregular vertices; %d vertices had an "
            "edit undone",
@@ -214,6 +218,8 @@ FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par
   out.SetInt("glides", rep.glides);
   out.SetInt("pair_steps", rep.pairSteps);
   out.SetInt("split_absorptions", rep.splitAbsorptions);
+  out.SetInt("angle_repairs", rep.angleRepairs);
+  out.SetInt("travel", rep.travel);
   out.SetInt("undone", rep.undone);
   out.SetInt("undone_angle", rep.undoneAngle);
   out.SetInt("undone_hausdorff", rep.undoneHausdorff);

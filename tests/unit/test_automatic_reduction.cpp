@@ -755,3 +755,65 @@ TEST(AutomaticReduction, CreaseAngleSlackPaysAtCreasesOnly) {
   }
   EXPECT_LT(left[1], left[0]);
 }
+
+namespace {
+/// knot1 remeshed to about n vertices and reduced with opt: the report and the result's shape.
+struct KnotRun {
+  ReductionReport rep;
+  ShapeMeasures after;
+  int vertices = 0;
+};
+void ReduceKnot(int n, const ReductionOptions& opt, KnotRun& run) {
+  TMesh m;
+  std::unique_ptr<SurfaceProjector> input;
+  ASSERT_TRUE(RemeshedCorpus(m, "knot1.off", n, &input)) << "corpus mesh missing (run scripts/setup.sh)";
+  run.vertices = m.vn;
+  run.rep = AutomaticReduction<TMesh>(m, *input, opt).Run();
+  ASSERT_TRUE(run.rep) << run.rep.result.reason;
+  Result inv = CheckInvariants(m);
+  ASSERT_TRUE(inv.ok) << inv.reason;
+  run.after = MeasureShape(m);
+}
+}  // namespace
+
+// The pair travel counts steps on a mesh of travelReferenceVertices: on a finer mesh the same
+// distance on the surface is more steps, and the travel grows by the square root of the
+// vertex count (never shrinks; 0 keeps it fixed).
+TEST(AutomaticReduction, TravelGrowsWithTheSquareRootOfTheVertexCount) {
+  for (int reference : {0, 20000, 750}) {
+    ReductionOptions opt;
+    opt.travelReferenceVertices = reference;
+    KnotRun run;
+    ASSERT_NO_FATAL_FAILURE(ReduceKnot(3000, opt, run));
+    const int expected = reference > 0 && run.vertices > reference
+                             ? int(std::lround(12 * std::sqrt(double(run.vertices) / reference)))
+                             : 12;
+    EXPECT_EQ(run.rep.travel, expected) << "reference " << reference << ", " << run.vertices << " vertices";
+    if (reference == 750) EXPECT_GE(run.rep.travel, 23);  // about twice 12 at four times the vertices
+  }
+}
+
+// A transport's route refused for triangles a little under the minimum angle is relaxed again
+// around them (angleRepairRounds) and kept when none is left: with the rounds some routes are
+// kept so, without them none, and the result stays a valid mesh with its triangles' share
+// under 30 degrees within 1%.
+TEST(AutomaticReduction, AngleRepairKeepsRoutesThatOneMoreRelaxationLifts) {
+  int repairs[2] = {0, 0}, left[2] = {0, 0};
+  for (int rounds : {0, 6}) {
+    ReductionOptions opt;
+    opt.maxTravel = 24;
+    opt.glideTravel = 96;
+    opt.angleRepairRounds = rounds;
+    KnotRun run;
+    ASSERT_NO_FATAL_FAILURE(ReduceKnot(4000, opt, run));
+    repairs[rounds > 0] = run.rep.angleRepairs;
+    left[rounds > 0] = run.rep.irregularAfter;
+    std::printf("knot1 at 4K, maxTravel 24, %d angle repair rounds: %d -> %d irregular, %d routes repaired, min "
+                "angle %.2f, %.3f%% under 30\n",
+                rounds, run.rep.irregularBefore, run.rep.irregularAfter, run.rep.angleRepairs, run.after.minAngleDeg,
+                100 * run.after.shareBelow30);
+    EXPECT_LE(run.after.shareBelow30, 0.01);
+  }
+  EXPECT_EQ(repairs[0], 0);
+  EXPECT_GT(repairs[1], 0);
+}

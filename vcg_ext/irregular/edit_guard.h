@@ -150,6 +150,21 @@ class EditGuard {
     return mn;
   }
 
+  /// The vertices of the faces around the 2-ring of the seeds with an angle under `deg`.
+  std::vector<int> SharpCornersAround(const std::vector<int>& seeds, double deg) {
+    std::vector<int> live, out;
+    for (int v : seeds)
+      if (ed_.IsLive(v)) live.push_back(v);
+    const double c = std::cos(deg * M_PI / 180);
+    for (int v : KRing(m_, live, 2))
+      for (auto& cr : ed_.Star(v).corners)
+        if (relax_detail::MaxCornerCos(cr.f) > c)
+          for (int z = 0; z < 3; ++z) out.push_back(ed_.Index(cr.f->V(z)));
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+
   /// Has f a vertex on one of the input's crease lines (vertices created since are not)?
   bool OnCreaseLine(const FaceType* f) const {
     if (!crease_) return false;

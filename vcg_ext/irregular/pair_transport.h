@@ -256,16 +256,42 @@ class PairTransport {
       guard_.RelaxAround(touched);
       verdict = g.Verdict(touched);
     }
+    bool repaired = false;
+    if (verdict == GuardVerdict::Angle) repaired = (verdict = RepairAngles(g, touched)) == GuardVerdict::Kept;
     if (verdict != GuardVerdict::Kept) {
       g.Refuse(verdict);
       ++rep.undone;
       return false;
     }
+    rep.angleRepairs += repaired;
     g.Keep(touched);
     if (touchedOut) touchedOut->insert(touchedOut->end(), touched.begin(), touched.end());
     ++successes;
     rep.pairSteps += reach;
     return true;
+  }
+
+  /// A route refused for triangles under the minimum angle: a long route relaxed as a whole
+  /// often leaves a few just under it, where one more relaxation around them (their 2-ring)
+  /// lifts them. Up to opt.angleRepairRounds rounds, each only while the smallest angle is at
+  /// most opt.angleRepairSlackDeg under the minimum. The relaxed vertices join `touched` (the
+  /// guard judges their rings, and a kept edit stamps them). A repaired route must clear the
+  /// minimum angle itself, not the guard's "no worse than before" (its angle before was
+  /// measured at the pair's start, not where the repair reaches); crease faces keep their
+  /// slack. Returns the last verdict (Angle if no round was tried).
+  GuardVerdict RepairAngles(GuardedEdit<MeshType>& g, std::vector<int>& touched) {
+    GuardVerdict verdict = GuardVerdict::Angle;
+    for (int r = 0; r < opt_.angleRepairRounds && verdict == GuardVerdict::Angle; ++r) {
+      if (guard_.MinAngleAround(touched) < opt_.minAngleDeg - opt_.angleRepairSlackDeg) break;
+      const std::vector<int> sharp = guard_.SharpCornersAround(touched, opt_.minAngleDeg);
+      guard_.RelaxAround(sharp);
+      touched.insert(touched.end(), sharp.begin(), sharp.end());
+      verdict = g.Verdict(touched);
+      double atCrease = 180;
+      if (verdict == GuardVerdict::Kept && guard_.MinAngleAround(touched, &atCrease) < opt_.minAngleDeg)
+        verdict = GuardVerdict::Angle;
+    }
+    return verdict;
   }
 
   /// Steps the pair (a, b) with `step` until a removal (sec. 6.2) applies next to it; when no

@@ -92,10 +92,24 @@ struct ReductionOptions {
   double hausdorffSamplesPerEdge = 0;   ///< default 0 (sharp edges only): input samples per edited edge length for
                                         ///< the Hausdorff check besides its sharp edges; 2 is stricter and ~3x slower
   int localRelaxIterations = 3;         ///< default 3: sweeps of local relaxation of the 2-ring after each step
+  int angleRepairRounds = 6;            ///< default 6 (not a filter parameter): a transport's route that the guard
+                                        ///< refuses for triangles under the minimum angle is relaxed again around
+                                        ///< those triangles, up to this many times, and kept if then none is left
+                                        ///< (0: never). bunny00 / knot1 / elephant at 20K: 72 / 54 / 128 left
+                                        ///< without, 62 / 46 / 126 with (3 rounds: 60 / 56 / 126); at maxTravel 24
+                                        ///< bunny00 / knot1: 46 / 34 without, 38 / 22 with; about the same time
+  double angleRepairSlackDeg = 8;       ///< default 8 (not a filter parameter): ... only when the smallest angle
+                                        ///< there is at most this far under the minimum (farther, as on thin
+                                        ///< parts, the rounds cost a quarter more time and save nothing)
   // --- transport (pair_transport.h)
   int maxTravel = 12;                   ///< default 12: most pair steps a 5-7 pair is transported to meet a partner
   int glideTravel = 30;                 ///< default 30 (the filter: 4 x maxTravel): most steps a pair glides
                                         ///< straight on looking for a partner
+  int travelReferenceVertices = 20000;  ///< default 20000: maxTravel and glideTravel are steps on a mesh of this
+                                        ///< many vertices; on a finer one the same distance on the surface is more
+                                        ///< steps, and both grow by sqrt(V / this) (never shrink; 0: fixed).
+                                        ///< bunny00 remeshed by the peer to 80K (72K vertices): 194 left at 12
+                                        ///< steps (0.9.4), 90 at the scaled 24 (0.9.5)
   int targetsPerPair = 4;               ///< default 4: nearest irregular vertices a pair tries to reach, per round
   // --- the driver (automatic_reduction.h)
   int maxSweeps = 12;                   ///< default 12: passes over the irregular vertices
@@ -149,6 +163,8 @@ struct ReductionReport {
   bool timeLimitReached = false;
   bool interrupted = false;
   double hausdorffPercent = 0;  ///< symmetric distance of the result to the input (HausdorffPercent)
+  int angleRepairs = 0;       ///< transport routes kept after angle repair rounds (angleRepairRounds)
+  int travel = 0;               ///< the pair travel used: maxTravel, scaled to the mesh (travelReferenceVertices)
   int budgetRetries = 0;        ///< reruns with a tighter per-edit budget after overshooting
   bool allUndone = false;       ///< even the retries overshot: the mesh was given back unchanged
   double seconds = 0;
