@@ -195,7 +195,12 @@ def test_automatic_reduction(meshlab, corpus):
     assert (out["vertices_after"], out["faces_after"]) == (len(m.vertices), len(m.faces))
     assert out["remeshed"] and out["stop_reason"] == 0
     exact = fo.hausdorff_percent(src, m)
-    assert exact <= 0.5 and out["hausdorff_percent"] <= exact * 1.001 + 1e-4
+    assert exact <= 0.5
+    # the filter samples a superset of the oracle's points (quality.h MaxSampleDistance), so its
+    # report is never below the oracle's and at most a few percent above it, within the budget
+    # (as tests/pymeshlab/test_automatic_reduction.py asserts; 0.9.5 measured 0.4390 against 0.4356)
+    assert exact * (1 - 1e-3) - 1e-4 <= out["hausdorff_percent"] <= exact * 1.03 + 1e-4, (out["hausdorff_percent"], exact)
+    assert out["hausdorff_percent"] <= 0.5 * (1 + 1e-6)
     assert fo.shape_measures(m)["share_below_30"] <= 0.01
     assert_painted(m)
 
