@@ -817,3 +817,15 @@ TEST(AutomaticReduction, AngleRepairKeepsRoutesThatOneMoreRelaxationLifts) {
   EXPECT_EQ(repairs[0], 0);
   EXPECT_GT(repairs[1], 0);
 }
+
+// A region given up for routes that turned a triangle over (thin parts: most undone routes
+// there fold) says so in its log line.
+TEST(ReductionParts, AGivenUpRegionNamesFoldedRoutes) {
+  GaveUpRegion g;
+  g.vertex = 7;
+  g.irregularAround = 2;
+  g.refused = 20;
+  g.byReason[int(Refusal::Angle)] = 5;
+  g.byReason[int(Refusal::Fold)] = 15;
+  EXPECT_EQ(g.Describe(), "gave up around vertex 7 (2 irregular vertices) after 20 refused edits: angle 5, triangle turned over 15");
+}

@@ -20,14 +20,14 @@ namespace irregular {
 
 /// Why an edit tried in a region was undone: the edit guard's refusals (edit_guard.h), or a
 /// split-and-absorb (pair_transport.h) whose closing cancellation never happened.
-enum class Refusal { Angle = 0, Hausdorff, Frozen, Boundary, NoCancellation };
-constexpr int kRefusalKinds = 5;
+enum class Refusal { Angle = 0, Hausdorff, Frozen, Boundary, NoCancellation, Fold };
+constexpr int kRefusalKinds = 6;
 /// A region of the bounded effort: the vertices within this many edges of an irregular vertex
 /// (the edit guard relaxes and judges the 2-ring of what an edit touches).
 constexpr int kRegionRings = 2;
 inline const char* RefusalName(Refusal r) {
   static const char* n[kRefusalKinds] = {"angle", "Hausdorff budget", "protected selection", "boundary count",
-                                         "no cancellation"};
+                                         "no cancellation", "triangle turned over"};
   return n[int(r)];
 }
 
@@ -37,7 +37,7 @@ struct GaveUpRegion {
   int vertex = -1;           ///< the irregular vertex the region is around (index of the returned mesh)
   int irregularAround = 0;   ///< interior irregular vertices within kRegionRings edges of it, itself included
   int refused = 0;           ///< edits refused there (= the bound when it was given up)
-  int byReason[kRefusalKinds] = {0, 0, 0, 0, 0};  ///< those refusals by Refusal
+  int byReason[kRefusalKinds] = {};  ///< those refusals by Refusal
   double thickness = std::numeric_limits<double>::infinity();  ///< local thickness in mean edge lengths
                              ///< (leftover_reasons.h); inf: not a thin part
   bool Thin() const { return thickness < std::numeric_limits<double>::infinity(); }

@@ -363,7 +363,7 @@ class ReductionState {
  private:
   struct Effort {
     int refused = 0;                               ///< edits refused in the region's turns
-    int byReason[kRefusalKinds] = {0, 0, 0, 0, 0};
+    int byReason[kRefusalKinds] = {};
     long givenUpAt = -1;                           ///< epoch it was given up at (-1: not given up)
   };
 
