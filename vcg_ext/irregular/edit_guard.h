@@ -74,9 +74,7 @@ class EditGuard {
     // A protected vertex next to a changed one would see one of its faces change (a collapse
     // or split re-points the faces around the vertex it removes or splits).
     if (!opt_.frozen.empty()) {
-      std::vector<int> live;
-      for (int t : touched)
-        if (ed_.IsLive(t)) live.push_back(t);
+      const std::vector<int> live = LiveOf(touched);
       for (int x : KRing(m_, live, 1))
         if (state_.Frozen(x)) return GuardVerdict::Frozen;
     }
@@ -96,9 +94,7 @@ class EditGuard {
 
   /// Local relaxation (sec. 8) of the 2-ring of the seeds, journaled so the guard can undo it.
   void RelaxAround(const std::vector<int>& seeds) {
-    std::vector<int> live;
-    for (int v : seeds)
-      if (ed_.IsLive(v)) live.push_back(v);
+    const std::vector<int> live = LiveOf(seeds);
     if (live.empty()) return;
     std::vector<int> ring = KRing(m_, live, 2), movable;
     for (int v : ring)
@@ -115,9 +111,7 @@ class EditGuard {
   /// Does an edge around the 2-ring of the seeds join faces whose normals differ by more than
   /// maxTurnDeg (a triangle turned over)? For edits made without the per-step fold check.
   bool FoldsAround(const std::vector<int>& seeds, double maxTurnDeg = 120) {
-    std::vector<int> live;
-    for (int v : seeds)
-      if (ed_.IsLive(v)) live.push_back(v);
+    const std::vector<int> live = LiveOf(seeds);
     const double c = std::cos(maxTurnDeg * M_PI / 180.0);
     for (int v : KRing(m_, live, 2))
       for (auto& cr : ed_.Star(v).corners) {
@@ -138,9 +132,7 @@ class EditGuard {
   /// faces with a vertex on a crease line count there instead (*atCrease: their smallest angle,
   /// left as it was when there is none).
   double MinAngleAround(const std::vector<int>& seeds, double* atCrease = nullptr) {
-    std::vector<int> live;
-    for (int v : seeds)
-      if (ed_.IsLive(v)) live.push_back(v);
+    const std::vector<int> live = LiveOf(seeds);
     double mn = 180;
     for (int v : KRing(m_, live, 2))
       for (auto& c : ed_.Star(v).corners) {
@@ -152,9 +144,8 @@ class EditGuard {
 
   /// The vertices of the faces around the 2-ring of the seeds with an angle under `deg`.
   std::vector<int> SharpCornersAround(const std::vector<int>& seeds, double deg) {
-    std::vector<int> live, out;
-    for (int v : seeds)
-      if (ed_.IsLive(v)) live.push_back(v);
+    const std::vector<int> live = LiveOf(seeds);
+    std::vector<int> out;
     const double c = std::cos(deg * M_PI / 180);
     for (int v : KRing(m_, live, 2))
       for (auto& cr : ed_.Star(v).corners)
@@ -189,9 +180,7 @@ class EditGuard {
   /// tip cut off by an edit. Only "above the budget or not" matters, so (a) stops at the
   /// first excess. *crease: the largest deviation of (b)'s samples on creases.
   double DeviationAround(const std::vector<int>& seeds, double* crease) {
-    std::vector<int> live;
-    for (int v : seeds)
-      if (ed_.IsLive(v)) live.push_back(v);
+    const std::vector<int> live = LiveOf(seeds);
     // the local relaxation after an edit moves its 2-ring, which changes the faces up to there
     const std::vector<int> region = KRing(m_, live, 2);
     std::vector<const FaceType*> changed, all;
@@ -376,6 +365,14 @@ class EditGuard {
   }
 
  private:
+  /// The seeds an edit has not deleted (a collapse removes vertices that stay in `touched`).
+  std::vector<int> LiveOf(const std::vector<int>& seeds) const {
+    std::vector<int> live;
+    for (int v : seeds)
+      if (ed_.IsLive(v)) live.push_back(v);
+    return live;
+  }
+
   /// Input samples for the input-to-edited side of the Hausdorff check: the input's face
   /// centroids and vertices thinned to perEdge per edited edge length (none if 0), plus
   /// everything on its sharp edges (creases, tips), where an edit cuts corners. Oriented by
