@@ -153,9 +153,10 @@ FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par
   ctx.Logf("Valences before:%s", HistogramText(rep.histogramBefore).c_str());
   ctx.Logf("Valences after:%s", HistogramText(rep.histogramAfter).c_str());
   ctx.Logf("Edits: %d type splits, %d local cancellations, %d pair transports and %d glides (%d pair steps), "
-           "%d stretched 5-7 pairs split and cancelled, %d edits undone (angle or Hausdorff limit)",
+           "%d stretched 5-7 pairs split and cancelled (and %d walked part way, for what their steps removed), "
+           "%d edits undone (angle or Hausdorff limit)",
            rep.typeSplits, rep.localCancellations, rep.transports, rep.glides, rep.pairSteps, rep.splitAbsorptions,
-           rep.undone);
+           rep.partialAbsorptions, rep.undone);
   ctx.Logf("Pair travel: %d steps (maxTravel %d%s); %d routes kept after their sharpest triangles were relaxed again",
            rep.travel, opt.maxTravel,
            rep.travel != opt.maxTravel ? ", grown with the square root of the vertex count above 20000" : "",
@@ -220,6 +221,7 @@ FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par
   out.SetInt("glides", rep.glides);
   out.SetInt("pair_steps", rep.pairSteps);
   out.SetInt("split_absorptions", rep.splitAbsorptions);
+  out.SetInt("partial_absorptions", rep.partialAbsorptions);
   out.SetInt("angle_repairs", rep.angleRepairs);
   out.SetInt("travel", rep.travel);
   out.SetInt("undone", rep.undone);

@@ -138,6 +138,31 @@ def test_defective_mesh_is_refused_by_every_filter(name):
     assert not problems, "\n".join(problems)
 
 
+def test_the_repair_a_refusal_names_makes_the_mesh_acceptable():
+    """Two fans of faces at one vertex (the peer's remeshing of the cow at 20K has one): the
+    refusal's repair, with the displacement it asks for, gives a mesh every filter takes; without
+    it, the copies at one position are refused as duplicated vertices, and that refusal says
+    how to avoid them instead of advising a merge that would undo the repair."""
+    # two octahedra touching at a vertex: the second's (-1, 0, 0), moved by (2, 0, 0), is the
+    # first's (1, 0, 0)
+    o = fo.octahedron()
+    v, f = np.asarray(o.vertices, float), np.asarray(o.faces)
+    assert tuple(v[0]) == (1, 0, 0) and tuple(v[1]) == (-1, 0, 0)
+    second = {0: 6, 1: 0, 2: 7, 3: 8, 4: 9, 5: 10}
+    vertices = np.vstack([v, v[[0, 2, 3, 4, 5]] + (2, 0, 0)])
+    faces = np.vstack([f, np.vectorize(second.get)(f)])
+    ms = from_arrays(vertices, faces)
+    refuse(ms, ANALYZE, ["Repair non Manifold Vertices", "Vertex Displacement Ratio above 0"])
+    ms.meshing_repair_non_manifold_vertices(vertdispratio=0)
+    refuse(ms, ANALYZE, ["duplicated vertices", "Vertex Displacement Ratio above 0"])
+    ms = from_arrays(vertices, faces)
+    ms.meshing_repair_non_manifold_vertices(vertdispratio=0.05)
+    out = apply(ms, ANALYZE)
+    assert ms.current_mesh().vertex_number() == len(vertices) + 1  # the shared vertex, split in two
+    fo.check_invariants(tri(ms))
+    assert out
+
+
 def test_mesh_without_faces_is_refused():
     for filter_name in FILTERS:
         ms = pymeshlab.MeshSet()

@@ -818,6 +818,26 @@ TEST(AutomaticReduction, AngleRepairKeepsRoutesThatOneMoreRelaxationLifts) {
   EXPECT_GT(repairs[1], 0);
 }
 
+// A split-and-absorb whose walk stops short is kept when the pairs it generated already met
+// more irregular vertices than they made (ReductionOptions::partialAbsorption): on knot1 at
+// 4K some are, the mesh stays valid, and without the option none is.
+TEST(AutomaticReduction, PartialAbsorptionsKeepOnlyWhatLoweredTheCount) {
+  int partial[2] = {-1, -1};
+  for (bool on : {false, true}) {
+    ReductionOptions opt;
+    opt.partialAbsorption = on;
+    KnotRun run;
+    ASSERT_NO_FATAL_FAILURE(ReduceKnot(4000, opt, run));
+    partial[on] = run.rep.partialAbsorptions;
+    std::printf("knot1 at 4K, partial absorption %s: %d -> %d irregular, %d split-and-absorbs, %d part way\n",
+                on ? "on" : "off", run.rep.irregularBefore, run.rep.irregularAfter, run.rep.splitAbsorptions,
+                run.rep.partialAbsorptions);
+    EXPECT_LE(run.rep.hausdorffPercent, opt.hausdorffBudgetPercent);
+  }
+  EXPECT_EQ(partial[0], 0);
+  EXPECT_GT(partial[1], 0);
+}
+
 // A region given up for routes that turned a triangle over (thin parts: most undone routes
 // there fold) says so in its log line.
 TEST(ReductionParts, AGivenUpRegionNamesFoldedRoutes) {

@@ -63,7 +63,9 @@ struct InputReport {
     }
     if (nonManifoldVertices > 0) {
       o << "The mesh is not manifold: " << nonManifoldVertices
-        << " vertices join separate fans of faces. Repair it with 'Repair non Manifold Vertices'.";
+        << " vertices join separate fans of faces. Repair it with 'Repair non Manifold Vertices', with a "
+           "Vertex Displacement Ratio above 0 (0.05: at 0 the copies it makes stay at one position, and are "
+           "refused as duplicated vertices).";
       return Result::Fail(o.str());
     }
     if (misorientedEdges > 0) {
@@ -74,7 +76,9 @@ struct InputReport {
     if (duplicateVertices > 0) {
       o << "The mesh has " << duplicateVertices
         << " duplicated vertices (same position), so its connectivity is cut where it should not "
-           "be. Merge them with 'Remove Duplicate Vertices'.";
+           "be. Merge them with 'Remove Duplicate Vertices' (unless 'Repair non Manifold Vertices' made them: "
+           "merging would join its fans again; run it again with a Vertex Displacement Ratio above 0, such as "
+           "0.05).";
       return Result::Fail(o.str());
     }
     if (unreferencedVertices > 0) {

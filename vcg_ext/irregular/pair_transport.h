@@ -84,8 +84,9 @@ class PairTransport {
   /// stretched dislocation that no single pair move can carry. v steps toward w with 5-7
   /// pair generation (sec. 6.2), and each generated pair is transported away until it cancels
   /// elsewhere (sec. 7.2); once v is next to w the two form an adjacent 5-7 pair, which is
-  /// transported to a cancellation in turn. Kept only if that last cancellation happens (net:
-  /// two irregular vertices fewer), otherwise undone.
+  /// transported to a cancellation in turn. Kept if that last cancellation happens (net: two
+  /// irregular vertices fewer), or, with opt.partialAbsorption, if the steps taken already
+  /// lowered the count; otherwise undone.
   bool SplitAndAbsorb(ReductionReport& rep, int v, int radius) {
     const int dv = ed_.Valence(v);
     std::vector<int> near = NearestIrregular({v}, radius, 1, dv == 5 ? 7 : 5);
@@ -144,6 +145,15 @@ class PairTransport {
         ++rep.splitAbsorptions;
         return true;
       }
+    }
+    // The walk stopped short of w (or the last pair found no cancellation), but the pairs it
+    // generated on the way met more irregular vertices than they made: what it did is a
+    // reduction by itself, and v stands closer to w for a later turn.
+    if (opt_.partialAbsorption && cur != v && !state_.TurnExhausted() && state_.CountChange(touched) < 0 &&
+        g.Judge(unjudged)) {
+      g.Keep(touched);
+      ++rep.partialAbsorptions;
+      return true;
     }
     // the report goes back to before the attempt, but keeps what the guard refused in it
     const int angle = rep.undoneAngle, hausdorff = rep.undoneHausdorff, frozen = rep.undoneFrozen,

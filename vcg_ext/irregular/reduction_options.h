@@ -110,6 +110,12 @@ struct ReductionOptions {
                                         ///< steps, and both grow by sqrt(V / this) (never shrink; 0: fixed).
                                         ///< bunny00 remeshed by the peer to 80K (72K vertices): 194 left at 12
                                         ///< steps (0.9.4), 90 at the scaled 24 (0.9.5)
+  bool partialAbsorption = true;        ///< default true (not a filter parameter): a split-and-absorb whose walk
+                                        ///< stops short is kept when the pairs it generated already met more
+                                        ///< irregular vertices than they made (pair_transport.h). The full set's
+                                        ///< 18 models at 20K (native bench): 6216 left without, 6159 with (12
+                                        ///< fewer, 3 more, 3 the same; bunny00 62 -> 58, knot1 46 -> 48); bunny00
+                                        ///< at maxTravel 24: 38 -> 36
   int targetsPerPair = 4;               ///< default 4: nearest irregular vertices a pair tries to reach, per round
   // --- the driver (automatic_reduction.h)
   int maxSweeps = 12;                   ///< default 12: passes over the irregular vertices
@@ -145,6 +151,8 @@ struct ReductionReport {
   int glides = 0;             ///< pairs that glided straight on into a cancellation
   int pairSteps = 0;          ///< pair steps of those transports
   int splitAbsorptions = 0;   ///< stretched dislocations split into two pairs that were both cancelled
+  int partialAbsorptions = 0; ///< split-and-absorbs kept part way, for what they had already removed
+                              ///< (partialAbsorption)
   int undone = 0;             ///< edits undone (angle, Hausdorff or fold), not counting those inside a
                               ///< split-and-absorb that was undone as a whole
   // The guard's refusals by reason count every refusal, those inside an undone

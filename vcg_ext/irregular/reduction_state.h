@@ -170,6 +170,18 @@ class ReductionState {
     }
   }
 
+  /// What UpdateCount(touched) would add to the interior irregular count, without changing
+  /// anything. O(touched).
+  int CountChange(const std::vector<int>& touched) {
+    int d = 0;
+    for (int x : ChangedRegion(touched)) {
+      if (x < 0) continue;
+      const int was = size_t(x) < isIrregular_.size() ? isIrregular_[size_t(x)] : 0;
+      d += int(IsInteriorIrregular(x)) - was;
+    }
+    return d;
+  }
+
   /// The touched vertices, their 1-ring and the vertices the current edit deleted (sorted,
   /// unique): where valences (and boundary corners) can have changed.
   std::vector<int> ChangedRegion(const std::vector<int>& touched) {
