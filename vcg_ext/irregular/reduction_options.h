@@ -113,8 +113,8 @@ struct ReductionOptions {
   bool partialAbsorption = true;        ///< default true (not a filter parameter): a split-and-absorb whose walk
                                         ///< stops short is kept when the pairs it generated already met more
                                         ///< irregular vertices than they made (pair_transport.h). The full set's
-                                        ///< 18 models at 20K (native bench): 6216 left without, 6159 with (12
-                                        ///< fewer, 3 more, 3 the same; bunny00 62 -> 58, knot1 46 -> 48); bunny00
+                                        ///< 18 models at 20K (native bench): 6216 left without, 6159 with (10
+                                        ///< fewer, 3 more, 5 the same; bunny00 62 -> 58, knot1 46 -> 48); bunny00
                                         ///< at maxTravel 24: 38 -> 36
   int targetsPerPair = 4;               ///< default 4: nearest irregular vertices a pair tries to reach, per round
   // --- the driver (automatic_reduction.h)
