@@ -393,7 +393,6 @@ def cmd_run_ours(a):
     if repaired:
         ms.meshing_repair_non_manifold_vertices(vertdispratio=0.05)
     r = ms.meshing_irregular_automatic_reduction(**reduce_params(pymeshlab, parse_params(a.param)))
-    r = dict(r)
     r["non_manifold_vertices_repaired"] = repaired
     dst = a.output or ours_path(a.out, a.model, a.vertices, a.tag)
     ms.save_current_mesh(dst)

@@ -820,8 +820,9 @@ TEST(AutomaticReduction, AngleRepairKeepsRoutesThatOneMoreRelaxationLifts) {
 
 // A split-and-absorb whose walk stops short is kept when the pairs it generated already met
 // more irregular vertices than they made (ReductionOptions::partialAbsorption): on knot1 at
-// 4K some are, the mesh stays valid, and without the option none is.
-TEST(AutomaticReduction, PartialAbsorptionsKeepOnlyWhatLoweredTheCount) {
+// 4K some are, the mesh stays valid (ReduceKnot checks the invariants) within the budget, and
+// without the option none is.
+TEST(AutomaticReduction, PartialAbsorptionsHappenOnlyWhenAskedAndKeepTheMeshValid) {
   int partial[2] = {-1, -1};
   for (bool on : {false, true}) {
     ReductionOptions opt;
