@@ -76,6 +76,10 @@ FULL = [(m, 20000) for m in ["bunny00", "armadillo", "fandisk", "camel", "homer"
                              "bull", "dino", "elephant", "knot1", "man", "femur", "mushroom", "three_peaks",
                              "holes", "lion"]]
 THIN = {"man", "femur", "hand"}  # parts thinner than about four edge lengths at 20K: total bound 3%
+# Issue 14's exception, per vertex: irregular vertices on parts thinner than this many edge
+# lengths are reported apart; a genus-0 model meets the 1% share with the others, its total at
+# most 3%.
+THIN_EDGES = 4.0
 CREASE_MODELS = {"fandisk"}
 CREASE_ANGLE = 60.0
 # Settings of the plot (label, overrides of OURS_PARAMS); the default setting is the table's run.
@@ -99,6 +103,17 @@ def valence_split(mesh):
     by = {int(k): int(c) for k, c in zip(*np.unique(eq, return_counts=True))}
     return {"irregular": int(irr.sum()), "interior": int((irr & ~bnd).sum()), "boundary": int((irr & bnd).sum()),
             "by_valence": by}
+
+
+def thin_split(mesh, referenced, edges=THIN_EDGES):
+    """Interior irregular vertices on parts thinner than `edges` edge lengths (the oracle's
+    thin_vertex_mask, independent of the filter's own leftover reasons), and the share of the
+    referenced vertices that the other irregular vertices make (issue 14's thin-part exception)."""
+    m = fo.as_mesh(mesh)
+    irr = fo.irregular_mask(m) & ~fo.boundary_vertex_mask(m)
+    thin = int(fo.thin_vertex_mask(m, edges, which=np.nonzero(irr)[0]).sum())
+    return {"thin_irregular": thin,
+            "share_off_thin": 100.0 * (int(fo.irregular_mask(m).sum()) - thin) / max(1, referenced)}
 
 
 def angle_measures(mesh):
@@ -157,6 +172,7 @@ def measure(mesh, raw, source, diag):
          "loops": fo.boundary_loop_count(m)}
     r.update(valence_split(m))
     r["share"] = 100.0 * r["irregular"] / max(1, r["V"])
+    r.update(thin_split(m, r["V"]))
     r.update(angle_measures(m))
     r["H_source"] = hausdorff_percent(source, m, diag)
     r["H_raw"] = r["H_source"] if source is raw else hausdorff_percent(raw, m, diag)
@@ -481,9 +497,9 @@ def _valences(r):
 
 
 def table(results):
-    lines = ["| model | side | V | chi | irregular | share | interior / boundary | irregular by valence | "
-             "H to input (% diag) | H to raw (% diag) | min angle | < 30 deg | cpu s (median) | wall s (median) | "
-             "ours / peer (cpu, wall) |", "|" + "---|" * 15]
+    lines = ["| model | side | V | chi | irregular | share | interior / boundary | on thin parts | "
+             "irregular by valence | H to input (% diag) | H to raw (% diag) | min angle | < 30 deg | "
+             "cpu s (median) | wall s (median) | ours / peer (cpu, wall) |", "|" + "---|" * 16]
     for res in results:
         name = "%s@%d" % (res["model"], res["vertices"])
         if "failed" in res:
@@ -492,10 +508,11 @@ def table(results):
         for side, who in (("peer", "MeshLab isotropic remeshing"), ("ours", "reduction alone")):
             r = res[side]
             ratio = "%.2f, %.2f" % (res["ratio_cpu"], res["ratio_wall"]) if side == "ours" else "1"
-            lines.append("| %s | %s | %d | %d | %d | %.2f%% | %d / %d | %s | %.3f%% | %.3f%% | %.1f | %.2f%% | %.1f | "
-                         "%.1f | %s |" % (name, who, r["V"], r["chi"], r["irregular"], r["share"], r["interior"],
-                                          r["boundary"], _valences(r), r["H_source"], r["H_raw"], r["min_angle"],
-                                          100 * r["below30"], r["cpu"], r["wall"], ratio))
+            lines.append("| %s | %s | %d | %d | %d | %.2f%% | %d / %d | %d | %s | %.3f%% | %.3f%% | %.1f | %.2f%% | "
+                         "%.1f | %.1f | %s |" % (name, who, r["V"], r["chi"], r["irregular"], r["share"],
+                                                 r["interior"], r["boundary"], r["thin_irregular"], _valences(r),
+                                                 r["H_source"], r["H_raw"], r["min_angle"], 100 * r["below30"],
+                                                 r["cpu"], r["wall"], ratio))
     return lines
 
 
@@ -528,9 +545,14 @@ def targets(results, sizes=None, memory=None, plot_points=None):
                     add("bunny00 count, thorough (%s)" % label, name, "%d at %.2fx peer" % (n, ratio), "<= 48",
                         n <= 48)
         if closed and o["chi"] == 2:
-            bound = 3.0 if base in THIN else 1.0
-            add("genus-0 share" + (" (thin parts: total)" if base in THIN else ""), name, "%.2f%%" % o["share"],
-                "<= %g%%" % bound, o["share"] <= bound)
+            if base in THIN:
+                add("genus-0 share (thin parts: total)", name, "%.2f%%" % o["share"], "<= 3%", o["share"] <= 3.0)
+            else:
+                # the issue's exception: the irregular vertices on thin parts are counted apart
+                add("genus-0 share", name, "%.2f%%: %.2f%% off thin parts (%d on them)"
+                    % (o["share"], o["share_off_thin"], o["thin_irregular"]),
+                    "<= 1%, or <= 1% off thin parts and <= 3% in all",
+                    o["share"] <= 1.0 or (o["share_off_thin"] <= 1.0 and o["share"] <= 3.0))
             add("genus-0 Hausdorff", name, "%.3f%% (to raw %.3f%%)" % (o["H_source"], o["H_raw"]), "<= 0.5%",
                 o["H_source"] <= 0.5)
             add("genus-0 < 30 deg", name, "%.2f%%" % (100 * o["below30"]), "<= 1%", 100 * o["below30"] <= 1.0)
@@ -745,6 +767,72 @@ def memory_check(a, log):
 
 # ---------------------------------------------------------------------------------------------
 
+def write_report(out, name, header, results, size_results, memory, plot_info, seconds):
+    """OUT/<name> (the tables and the target rows) and its .json twin (what `rescore` reads);
+    prints the text; returns the target rows."""
+    lines = [header, ""]
+    lines += table(results)
+    stops = ["%s@%d: stop_reason %s, undone %s, interior %s -> %s%s" % (
+        r["model"], r["vertices"], r["filter"].get("stop_reason"), r["filter"].get("undone"),
+        r["filter"].get("interior_irregular_before"), r["filter"].get("interior_irregular_after"),
+        ", %d non-manifold vertices of the peer's output repaired first" % r["filter"]["non_manifold_vertices_repaired"]
+        if r["filter"].get("non_manifold_vertices_repaired") else "")
+        for r in results if "failed" not in r and r.get("filter")]
+    lines += ["", "The filter's own report: " + "; ".join(stops) + "."] if stops else []
+    if memory:
+        lines += ["", "Memory: peak resident memory of the reduction of %s: %.0f MiB, of a run that only loads and "
+                  "saves it: %.0f MiB, ratio %.2f, bound %g: %s (reduction cpu %.0f s, stop_reason %s, interior "
+                  "irregular %s -> %s)." % (
+                      memory["what"], memory["reduce"], memory["loadsave"], memory["ratio"], MEMORY_BOUND,
+                      _verdict(memory["ratio"] <= MEMORY_BOUND), memory.get("reduce_cpu", 0),
+                      memory.get("stop_reason"), *(memory.get("interior_irregular") or [None, None]))]
+    if plot_info:
+        lines += ["", "Plot: %s (%s)." % (plot_info[0], ", ".join("%s: %d at %.2fx" % (label, n, x)
+                                                                  for label, x, n in plot_info[1]))]
+    target_rows = targets(results, size_results, memory, plot_info[1] if plot_info else None)
+    lines += ["", "Targets of issue 14:", ""] + target_rows
+    lines += ["", "Total %.0f s." % seconds]
+    text = "\n".join(lines) + "\n"
+    print("\n" + text)
+    with open(os.path.join(out, name), "w") as f:
+        f.write(text)
+    with open(os.path.join(out, name[:-3] + ".json"), "w") as f:
+        json.dump({"header": header, "results": results, "sizes": [r["vertices"] for r in size_results],
+                   "memory": memory, "plot": plot_info, "seconds": seconds}, f, indent=1, default=str)
+    print("wrote", os.path.join(out, name))
+    return target_rows
+
+
+def cmd_rescore(a):
+    """Measures the outputs a bench run saved in OUT again, with this script's measures, and
+    rewrites its report: the times, the filter's own report and the memory figures are kept
+    (nothing runs again). For a report written before the measures changed."""
+    path = os.path.join(a.out, a.report)
+    with open(path) as f:
+        data = json.load(f)
+    results = data["results"]
+    for res in results:
+        if "failed" in res:
+            continue
+        model, vertices = res["model"], res["vertices"]
+        print("%s at %d vertices: measuring again ..." % (model, vertices), flush=True)
+        raw = load_arrays(raw_path(model))
+        diag = fo.diagonal(raw)
+        peer_mesh = load_arrays(peer_path(a.out, model, vertices))
+        ours_mesh = load_arrays(ours_path(a.out, model, vertices, "r1"))
+        for side, mesh, source in (("peer", peer_mesh, raw), ("ours", ours_mesh, peer_mesh)):
+            kept = {k: res[side][k] for k in ("cpu", "wall", "rss_mib", "cpu_runs", "wall_runs", "crease")
+                    if k in res[side]}
+            res[side] = dict(measure(mesh, raw, source, diag), **kept)
+    sizes = set(data.get("sizes") or [])
+    size_results = [r for r in results if r["model"] == "bunny00" and r["vertices"] in sizes]
+    header = data.get("header") or "Measured by scripts/bench_reduction.py."
+    header += " Measured again by `rescore`, %s UTC." % time.strftime("%Y-%m-%d %H:%M", time.gmtime())
+    plot_info = data.get("plot")
+    write_report(a.out, a.report[:-5] + ".md", header, results, size_results, data.get("memory"),
+                 [plot_info[0], [tuple(p) for p in plot_info[1]]] if plot_info else None, data.get("seconds", 0))
+
+
 def cmd_bench(a):
     if not os.path.isfile(a.plugin):
         sys.exit("plugin not found: %s (build filter_irregular_2025, or give --plugin)" % a.plugin)
@@ -775,41 +863,15 @@ def cmd_bench(a):
             base = [bench_model(a, "bunny00", 20000, log)]
             results.append(base[0])
         plot_info = plot(a, base[0], log)
-    lines = ["Measured by scripts/bench_reduction.py (%s set%s), %s UTC; %d run(s) a side, alternated; times are "
-             "whole processes (CPU = user + sys), medians; the ratio is the median of pairwise ratios. "
-             "A shared machine makes times noisy: quote the ratios." % (
-                 a.set if not a.models else "models " + a.models, ", sizes " + a.sizes if a.sizes else "",
-                 time.strftime("%Y-%m-%d %H:%M", time.gmtime()), a.runs), ""]
-    lines += table(results)
-    stops = ["%s@%d: stop_reason %s, undone %s, interior %s -> %s%s" % (
-        r["model"], r["vertices"], r["filter"].get("stop_reason"), r["filter"].get("undone"),
-        r["filter"].get("interior_irregular_before"), r["filter"].get("interior_irregular_after"),
-        ", %d non-manifold vertices of the peer's output repaired first" % r["filter"]["non_manifold_vertices_repaired"]
-        if r["filter"].get("non_manifold_vertices_repaired") else "")
-        for r in results if "failed" not in r and r.get("filter")]
-    lines += ["", "The filter's own report: " + "; ".join(stops) + "."] if stops else []
-    if memory:
-        lines += ["", "Memory: peak resident memory of the reduction of %s: %.0f MiB, of a run that only loads and "
-                  "saves it: %.0f MiB, ratio %.2f, bound %g: %s (reduction cpu %.0f s, stop_reason %s, interior "
-                  "irregular %s -> %s)." % (
-                      memory["what"], memory["reduce"], memory["loadsave"], memory["ratio"], MEMORY_BOUND,
-                      _verdict(memory["ratio"] <= MEMORY_BOUND), memory.get("reduce_cpu", 0),
-                      memory.get("stop_reason"), *(memory.get("interior_irregular") or [None, None]))]
-    if plot_info:
-        lines += ["", "Plot: %s (%s)." % (plot_info[0], ", ".join("%s: %d at %.2fx" % (label, n, x)
-                                                                  for label, x, n in plot_info[1]))]
-    target_rows = targets(results, size_results, memory, plot_info[1] if plot_info else None)
-    lines += ["", "Targets of issue 14:", ""] + target_rows
-    lines += ["", "Total %.0f s." % (time.monotonic() - t0)]
-    text = "\n".join(lines) + "\n"
-    print("\n" + text)
     name = "report_%s%s%s.md" % (a.set if not a.models else "models", "_sizes" if sizes else "",
                                  "_memory" if memory else "")
-    with open(os.path.join(a.out, name), "w") as f:
-        f.write(text)
-    with open(os.path.join(a.out, name[:-3] + ".json"), "w") as f:
-        json.dump({"results": results, "memory": memory}, f, indent=1, default=str)
-    print("wrote", os.path.join(a.out, name))
+    header = ("Measured by scripts/bench_reduction.py (%s set%s), %s UTC; %d run(s) a side, alternated; times are "
+              "whole processes (CPU = user + sys), medians; the ratio is the median of pairwise ratios. "
+              "A shared machine makes times noisy: quote the ratios." % (
+                  a.set if not a.models else "models " + a.models, ", sizes " + a.sizes if a.sizes else "",
+                  time.strftime("%Y-%m-%d %H:%M", time.gmtime()), a.runs))
+    target_rows = write_report(a.out, name, header, results, size_results, memory, plot_info,
+                               time.monotonic() - t0)
     failed = sum(row.endswith("| FAIL |") for row in target_rows)
     if a.strict and failed:
         sys.exit("%d target row(s) failed" % failed)
@@ -852,6 +914,10 @@ def main(argv=None):
             p.add_argument("--input")
             p.add_argument("--tag", default="")
             p.add_argument("--peak-file", help="write this process's own peak resident memory there (JSON)")
+    p = sub.add_parser("rescore", help="measure the outputs of an earlier bench run again and rewrite its report")
+    common(p)
+    p.add_argument("--report", default="report_full.json", help="the report's .json in OUT (default report_full.json)")
+    p.set_defaults(fn=cmd_rescore)
     p = sub.add_parser("replot", help="rewrite OUT/bench_reduction.svg from OUT/plot.json")
     common(p)
     p.set_defaults(fn=cmd_replot)

@@ -229,3 +229,43 @@ def test_crease_vertices():
     assert not fo.crease_vertex_mask(fo.grid(3), 1).any()  # flat
     n = fo.face_normals(fo.grid(1))
     assert np.allclose(n, [(0, 0, 1), (0, 0, 1)])
+
+
+def capped_tube(segments, rings, radius=1.0):
+    """A closed tube along z: `rings` rings of `segments` vertices, spaced by the edge length
+    around (2 pi radius / segments), each end closed by a fan to a centre vertex."""
+    step = 2 * np.pi * radius / segments
+    t = 2 * np.pi * np.arange(segments) / segments
+    v = [(radius * np.cos(a), radius * np.sin(a), r * step) for r in range(rings) for a in t]
+    v += [(0, 0, -step), (0, 0, rings * step)]
+    bottom, top = len(v) - 2, len(v) - 1
+    f = []
+    for r in range(rings - 1):
+        for k in range(segments):
+            a, b = r * segments + k, r * segments + (k + 1) % segments
+            f += [(a, b, b + segments), (a, b + segments, a + segments)]
+    for k in range(segments):
+        f.append((bottom, (k + 1) % segments, k))
+        last = (rings - 1) * segments
+        f.append((top, last + k, last + (k + 1) % segments))
+    return fo.Tri(np.array(v, float), np.array(f, np.int64))
+
+
+def test_thin_vertex_mask_finds_the_tube_thinner_than_four_edge_lengths():
+    # 12 around: the diameter is 12 / pi = 3.8 edge lengths; 40 around: 12.7
+    thin, thick = capped_tube(12, 30), capped_tube(40, 30)
+    for m in (thin, thick):
+        assert fo.is_consistently_oriented(m) and fo.euler_characteristic(m) == 2
+    middle = lambda segments: np.arange(10 * segments, 20 * segments)  # noqa: E731
+    assert fo.thin_vertex_mask(thin)[middle(12)].all()
+    assert not fo.thin_vertex_mask(thick)[middle(40)].any()
+    # the same answer with the faces wound the other way (normals turned outward by volume)
+    flipped = fo.Tri(thin.vertices, thin.faces[:, ::-1].copy())
+    assert (fo.thin_vertex_mask(flipped) == fo.thin_vertex_mask(thin)).all()
+    # a wider bound makes the thick tube thin; `which` tests only those vertices
+    assert fo.thin_vertex_mask(thick, edges=14)[middle(40)].all()
+    some = fo.thin_vertex_mask(thin, which=[0, 5 * 12 + 3])
+    assert some.sum() == 2 and some[0] and some[5 * 12 + 3]
+    # the icosahedron is 1.9 edge lengths across: thin at 4, not at 1.5
+    assert fo.thin_vertex_mask(fo.icosahedron()).all()
+    assert not fo.thin_vertex_mask(fo.icosahedron(), edges=1.5).any()

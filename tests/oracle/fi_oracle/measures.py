@@ -7,7 +7,7 @@ from .topology import as_mesh, referenced_mask
 
 __all__ = ["closest_point_distances", "surface_samples", "hausdorff", "hausdorff_percent", "diagonal",
            "triangle_areas", "edge_length_for", "mean_edge_length", "triangle_angles", "shape_measures",
-           "gaussian_curvature_near", "face_normals", "crease_vertex_mask"]
+           "gaussian_curvature_near", "face_normals", "crease_vertex_mask", "vertex_normals", "thin_vertex_mask"]
 
 
 def closest_point_distances(points, mesh, candidates=12):
@@ -193,4 +193,52 @@ def crease_vertex_mask(mesh, angle_deg):
     sharp = np.degrees(np.arccos(np.clip(cos, -1, 1))) > angle_deg
     out = np.zeros(len(m.vertices), dtype=bool)
     out[e[same[sharp]].ravel()] = True
+    return out
+
+
+def vertex_normals(mesh):
+    """Unit area-weighted vertex normals, turned outward: if the mesh encloses a negative
+    signed volume (faces wound clockwise seen from outside), every normal is flipped."""
+    m = as_mesh(mesh)
+    p = m.vertices[m.faces]
+    fn = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])  # twice the area times the unit normal
+    n = np.zeros_like(m.vertices)
+    for z in range(3):
+        np.add.at(n, m.faces[:, z], fn)
+    volume = float(np.einsum("ij,ij->i", p[:, 0], np.cross(p[:, 1], p[:, 2])).sum()) / 6.0
+    if volume < 0:
+        n = -n
+    return n / np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-300)
+
+
+def thin_vertex_mask(mesh, edges=4.0, which=None):
+    """Vertices on a part thinner than `edges` edge lengths (issue 14's thin-part exception:
+    fingers, toes, thin bones). v is on one if a vertex u of the surface facing the other way
+    (n_u . n_v < -0.5) lies behind v ((u - v) . n_v < 0: inside, with outward normals) within
+    edges * h_v, h_v being the mean length of v's edges: the opposite side of a tube or a plate
+    is that close. which: the vertex indices to test (default all); the others are False."""
+    from scipy.spatial import cKDTree
+    m = as_mesh(mesh)
+    nv = len(m.vertices)
+    out = np.zeros(nv, dtype=bool)
+    idx = np.arange(nv) if which is None else np.asarray(which, dtype=np.int64).ravel()
+    if len(idx) == 0 or len(m.faces) == 0:
+        return out
+    e = np.concatenate([m.faces[:, [0, 1]], m.faces[:, [1, 2]], m.faces[:, [2, 0]]])
+    length = np.linalg.norm(m.vertices[e[:, 0]] - m.vertices[e[:, 1]], axis=1)
+    total, count = np.zeros(nv), np.zeros(nv)
+    for z in range(2):  # every edge is seen twice on a closed mesh, once per face: a mean all the same
+        np.add.at(total, e[:, z], length)
+        np.add.at(count, e[:, z], 1)
+    h = total / np.maximum(count, 1)
+    n = vertex_normals(m)
+    ref = referenced_mask(m)
+    tree = cKDTree(m.vertices)
+    for v in idx[ref[idx]]:
+        near = np.asarray(tree.query_ball_point(m.vertices[v], edges * h[v]), dtype=np.int64)
+        if len(near) == 0:
+            continue
+        facing = n[near] @ n[v] < -0.5
+        behind = (m.vertices[near] - m.vertices[v]) @ n[v] < 0
+        out[v] = bool(np.any(facing & behind & ref[near]))
     return out
