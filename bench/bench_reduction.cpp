@@ -7,7 +7,8 @@
 // (containing '/').
 // options (ReductionOptions fields): maxTravel, glideTravel, targetsPerPair, maxSweeps,
 // localRelaxIterations, minAngle, budget (Hausdorff, percent of the diagonal), maxRefusals
-// (maxRefusalsPerRegion; 0: no bound), partialAbsorption (0/1).
+// (maxRefusalsPerRegion; 0: no bound), partialAbsorption (0/1), angleRepairRounds,
+// angleRepairSlack, travelReference (travelReferenceVertices), maxTravelScale.
 // files: saveRemeshed=<path> writes the remeshed input (OFF), saveResult=<path> the result, for
 // profiling the reduction alone on a fixed input and for comparing two runs byte by byte (with
 // several models, the model's name is appended).
@@ -99,6 +100,7 @@ int main(int argc, char** argv) {
     else if (key == "angleRepairRounds") opt.angleRepairRounds = int(v);
     else if (key == "angleRepairSlack") opt.angleRepairSlackDeg = v;
     else if (key == "travelReference") opt.travelReferenceVertices = int(v);
+    else if (key == "maxTravelScale") opt.maxTravelScale = v;
     else if (key == "partialAbsorption") opt.partialAbsorption = v != 0;
     else if (key == "timeLimit") opt.timeLimitSeconds = v > 0 ? v : opt.timeLimitSeconds;
     else if (key == "memory") memory = v != 0;

@@ -778,18 +778,22 @@ void ReduceKnot(int n, const ReductionOptions& opt, KnotRun& run) {
 
 // The pair travel counts steps on a mesh of travelReferenceVertices: on a finer mesh the same
 // distance on the surface is more steps, and the travel grows by the square root of the
-// vertex count (never shrinks; 0 keeps it fixed).
-TEST(AutomaticReduction, TravelGrowsWithTheSquareRootOfTheVertexCount) {
-  for (int reference : {0, 20000, 750}) {
+// vertex count (never shrinks; 0 keeps it fixed), up to maxTravelScale times (0: no bound).
+TEST(AutomaticReduction, TravelGrowsWithTheSquareRootOfTheVertexCountUpToItsBound) {
+  const std::pair<int, double> cases[] = {{0, 2}, {20000, 2}, {750, 2}, {300, 2}, {300, 0}};
+  for (const auto& c : cases) {
     ReductionOptions opt;
-    opt.travelReferenceVertices = reference;
+    opt.travelReferenceVertices = c.first;
+    opt.maxTravelScale = c.second;
     KnotRun run;
     ASSERT_NO_FATAL_FAILURE(ReduceKnot(3000, opt, run));
-    const int expected = reference > 0 && run.vertices > reference
-                             ? int(std::lround(12 * std::sqrt(double(run.vertices) / reference)))
-                             : 12;
-    EXPECT_EQ(run.rep.travel, expected) << "reference " << reference << ", " << run.vertices << " vertices";
-    if (reference == 750) EXPECT_GE(run.rep.travel, 23);  // about twice 12 at four times the vertices
+    double scale = c.first > 0 && run.vertices > c.first ? std::sqrt(double(run.vertices) / c.first) : 1;
+    if (c.second > 0) scale = std::min(scale, c.second);
+    EXPECT_EQ(run.rep.travel, int(std::lround(12 * scale)))
+        << "reference " << c.first << ", bound " << c.second << ", " << run.vertices << " vertices";
+    if (c.first == 750) EXPECT_GE(run.rep.travel, 23);  // about twice 12 at four times the vertices
+    if (c.first == 300) EXPECT_EQ(run.rep.travel, c.second > 0 ? 24 : int(std::lround(12 * scale)));
+    if (c.first == 300 && c.second == 0) EXPECT_GE(run.rep.travel, 36);  // three times 12 at ten times
   }
 }
 

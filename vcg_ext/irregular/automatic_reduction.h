@@ -234,10 +234,12 @@ class AutomaticReduction {
   /// opt with maxTravel and glideTravel scaled to m's resolution: a mesh finer than
   /// travelReferenceVertices needs sqrt(V / reference) times more steps for the same distance
   /// on the surface (most of what bunny00 at 80K vertices kept at 12 steps had no partner
-  /// within them: 76 of 194).
+  /// within them: 76 of 194), up to opt.maxTravelScale times: a transport's cost grows with
+  /// its travel, so an unbounded scale makes the run superlinear in the mesh size.
   static ReductionOptions ScaleTravel(ReductionOptions opt, const MeshType& m) {
     if (opt.travelReferenceVertices > 0 && m.vn > opt.travelReferenceVertices) {
-      const double s = std::sqrt(double(m.vn) / double(opt.travelReferenceVertices));
+      double s = std::sqrt(double(m.vn) / double(opt.travelReferenceVertices));
+      if (opt.maxTravelScale > 0) s = std::min(s, opt.maxTravelScale);
       opt.maxTravel = int(std::lround(opt.maxTravel * s));
       opt.glideTravel = int(std::lround(opt.glideTravel * s));
     }

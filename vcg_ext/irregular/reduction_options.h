@@ -110,6 +110,9 @@ struct ReductionOptions {
                                         ///< steps, and both grow by sqrt(V / this) (never shrink; 0: fixed).
                                         ///< bunny00 remeshed by the peer to 80K (72K vertices): 194 left at 12
                                         ///< steps (0.9.4), 90 at the scaled 24 (0.9.5)
+  double maxTravelScale = 2;            ///< default 2 (not a filter parameter): ... by at most this factor (80K
+                                        ///< vertices at the default reference), so that a finer mesh's time
+                                        ///< grows with its size only (0: no bound)
   bool partialAbsorption = true;        ///< default true (not a filter parameter): a split-and-absorb whose walk
                                         ///< stops short is kept when the pairs it generated already met more
                                         ///< irregular vertices than they made (pair_transport.h). The full set's

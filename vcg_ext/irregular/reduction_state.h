@@ -308,18 +308,21 @@ class ReductionState {
 
   // ------------------------------------------------------------ the whole-run undo
   /// Saves every vertex and face once (mesh_snapshot.h): O(V + F) memory whatever the number
-  /// of edits. First gives the mesh's vectors room for half as many elements more (at least
-  /// 4096 vertices and 8192 faces): the elements a run adds stay in the vectors (a collapse
+  /// of edits. First gives the mesh's vectors room for as many elements more (at least 4096
+  /// vertices and 8192 faces): the elements a run adds stay in the vectors (a collapse
   /// leaves a hole, a split appends), so that they do not double in the middle of the run, when
   /// the old and the new vector and the snapshot are all resident at once (ReserveRoom; it may
   /// move the elements: pointers into the mesh taken before are invalid after). The room costs
   /// address space, not resident memory, until elements fill it: reserving writes nothing there.
   /// An eighth was not enough: bunny00 subdivided once (301,632 faces, 19,715 irregular
   /// vertices) ends its run with 383,490 faces in the vector (+27%), and the face vector
-  /// doubled in the transports: the run's peak.
+  /// doubled in the transports: the run's peak. Half was not enough once the travel grew with
+  /// the mesh (0.9.5): the same input filled 97% of it (219,268 of 226,227 vertex slots), and
+  /// a run on four times as large an input (1.2M faces) had reached 3.7 times the memory of a
+  /// load and save when it was stopped (0.9.6).
   void TakeSnapshot() {
     ReleaseFreedMemory();
-    ReserveRoom(m_, std::max<size_t>(4096, m_.vert.size() / 2), std::max<size_t>(8192, m_.face.size() / 2));
+    ReserveRoom(m_, std::max<size_t>(4096, m_.vert.size()), std::max<size_t>(8192, m_.face.size()));
     snapshot_.Take(m_);
   }
   /// Gives back the mesh as TakeSnapshot saw it, bit for bit, and forgets the snapshot.
