@@ -230,9 +230,13 @@ class PairTransport {
   /// it is good enough (the guard). A failed transport is the common case, so a topology-only
   /// probe (no relaxation, no fold check) first finds whether and after how many steps a
   /// removal happens. A route that reaches one is relaxed as a whole and kept if no triangle
-  /// turned over and the guard passes it (on bunny00, 3965 of 4367 routes), after one more
-  /// relaxation if only its angles fail, and by little (Repairable); otherwise it is undone,
-  /// and the guard's refusal counts against the region. A route that turned a triangle over counts too (Refusal::Fold, 0.9.5): on thin
+  /// turned over and the guard passes it, after one more relaxation if needed (on bunny00,
+  /// 3965 of 4367 routes); otherwise it is undone, and the guard's refusal counts against the
+  /// region. Skipping that second relaxation where it rarely pays (a route refused for its
+  /// distance: saved 4 times in 1980 on fandisk; for its angles, beyond the repair slack: 11
+  /// times in 4300) made fandisk 11% and the bull 8% faster but bunny00 15% slower, with 60
+  /// left instead of 58 (0.9.7, tried and dropped: bunny's 1.5x is met only without the
+  /// skip). A route that turned a triangle over counts too (Refusal::Fold, 0.9.5): on thin
   /// parts most undone routes fold, and without counting them a region there was never given
   /// up for them (the man: 16% less CPU time with them counted, 2045 left instead of 2041; the
   /// quick set's counts and the femur's the same). Redoing a refused route step by step, with a
@@ -265,7 +269,7 @@ class PairTransport {
       return false;
     }
     GuardVerdict verdict = g.Verdict(touched);
-    if (verdict == GuardVerdict::Angle && Repairable(touched)) {
+    if (verdict != GuardVerdict::Kept) {
       guard_.RelaxAround(touched);
       verdict = g.Verdict(touched);
     }
@@ -282,23 +286,6 @@ class PairTransport {
     ++successes;
     rep.pairSteps += reach;
     return true;
-  }
-
-  /// Can more relaxation lift a route the guard refused for its angles? Only if its smallest
-  /// angle is within opt.angleRepairSlackDeg of the bound it failed (the repair rounds' own
-  /// condition). A second relaxation of the whole route saved 223 of 4300 angle refusals on
-  /// fandisk and 330 of 4600 on the bull (the repair rounds 112 and 286 more), of which only
-  /// 11 and 10 were beyond that slack; it saved a route refused for its distance 4 times in
-  /// 1980 and 8 in 1240. Without
-  /// those doomed rounds (0.9.7; native bench, the full set's 18 peer outputs): fandisk 11%
-  /// and the bull 8% less CPU time, 5% less in all but the triceratops (whose changed path
-  /// ended with the final check's retry, twice the time), 6188 irregular vertices left instead
-  /// of 6159.
-  bool Repairable(const std::vector<int>& touched) {
-    double atCrease = 180;
-    const double elsewhere = guard_.MinAngleAround(touched, &atCrease);
-    return elsewhere >= opt_.minAngleDeg - opt_.angleRepairSlackDeg &&
-           atCrease >= opt_.minAngleDeg - opt_.creaseAngleSlackDeg - opt_.angleRepairSlackDeg;
   }
 
   /// A route refused for triangles under the minimum angle: a long route relaxed as a whole
