@@ -110,10 +110,9 @@ def thin_split(mesh, referenced, edges=THIN_EDGES):
     thin_vertex_mask, independent of the filter's own leftover reasons), and the share of the
     referenced vertices that the other irregular vertices make (issue 14's thin-part exception)."""
     m = fo.as_mesh(mesh)
-    irr = fo.irregular_mask(m) & ~fo.boundary_vertex_mask(m)
-    thin = int(fo.thin_vertex_mask(m, edges, which=np.nonzero(irr)[0]).sum())
-    return {"thin_irregular": thin,
-            "share_off_thin": 100.0 * (int(fo.irregular_mask(m).sum()) - thin) / max(1, referenced)}
+    irr = fo.irregular_mask(m)
+    thin = int(fo.thin_vertex_mask(m, edges, which=np.nonzero(irr & ~fo.boundary_vertex_mask(m))[0]).sum())
+    return {"thin_irregular": thin, "share_off_thin": 100.0 * (int(irr.sum()) - thin) / max(1, referenced)}
 
 
 def angle_measures(mesh):

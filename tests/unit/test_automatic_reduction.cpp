@@ -792,8 +792,8 @@ TEST(AutomaticReduction, TravelGrowsWithTheSquareRootOfTheVertexCountUpToItsBoun
     EXPECT_EQ(run.rep.travel, int(std::lround(12 * scale)))
         << "reference " << c.first << ", bound " << c.second << ", " << run.vertices << " vertices";
     if (c.first == 750) EXPECT_GE(run.rep.travel, 23);  // about twice 12 at four times the vertices
-    if (c.first == 300) EXPECT_EQ(run.rep.travel, c.second > 0 ? 24 : int(std::lround(12 * scale)));
-    if (c.first == 300 && c.second == 0) EXPECT_GE(run.rep.travel, 36);  // three times 12 at ten times
+    if (c.first == 300) EXPECT_TRUE(c.second > 0 ? run.rep.travel == 24 : run.rep.travel >= 36)
+        << run.rep.travel;  // bounded at twice 12; unbounded, three times 12 at ten times the vertices
   }
 }
 

@@ -3,7 +3,7 @@ the exact symmetric Hausdorff distance between two triangle meshes, bounding-box
 triangle areas and angles, the discrete Gaussian curvature near points."""
 import numpy as np
 
-from .topology import as_mesh, referenced_mask
+from .topology import as_mesh, referenced_mask, unique_edges
 
 __all__ = ["closest_point_distances", "surface_samples", "hausdorff", "hausdorff_percent", "diagonal",
            "triangle_areas", "edge_length_for", "mean_edge_length", "triangle_angles", "shape_measures",
@@ -227,10 +227,10 @@ def thin_vertex_mask(mesh, edges=4.0, which=None):
     idx = np.arange(nv) if which is None else np.asarray(which, dtype=np.int64).ravel()
     if len(idx) == 0 or len(m.faces) == 0:
         return out
-    e = np.concatenate([m.faces[:, [0, 1]], m.faces[:, [1, 2]], m.faces[:, [2, 0]]])
+    e, _ = unique_edges(m)
     length = np.linalg.norm(m.vertices[e[:, 0]] - m.vertices[e[:, 1]], axis=1)
     total, count = np.zeros(nv), np.zeros(nv)
-    for z in range(2):  # every edge is seen twice on a closed mesh, once per face: a mean all the same
+    for z in range(2):
         np.add.at(total, e[:, z], length)
         np.add.at(count, e[:, z], 1)
     h = total / np.maximum(count, 1)
