@@ -20,6 +20,9 @@
 // The end-to-end comparison with MeshLab's remeshing through meshlabserver is
 // scripts/bench_reduction.py; this executable isolates the algorithm's own time.
 #include <chrono>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -48,6 +51,21 @@ bool LoadPath(TMesh& m, const std::string& file) {
   vcg::tri::Allocator<TMesh>::CompactEveryVector(m);
   test::UpdateTopology(m);
   return true;
+}
+
+/// glibc's heap: what is allocated (in the heap and as separate mappings) and what the heap holds
+/// freed (resident until trimmed), in MiB; zeros elsewhere.
+struct HeapMiB {
+  double used = 0, freed = 0;
+};
+HeapMiB Heap() {
+  HeapMiB h;
+#if defined(__GLIBC__) && (__GLIBC__ > 2 || (__GLIBC__ == 2 && __GLIBC_MINOR__ >= 33))
+  const struct mallinfo2 mi = mallinfo2();
+  h.used = double(mi.uordblks + mi.hblkhd) / 1048576.0;
+  h.freed = double(mi.fordblks) / 1048576.0;
+#endif
+  return h;
 }
 
 /// A line of /proc/self/status ("VmRSS", "VmHWM") in MiB, or -1 where there is none.
@@ -129,13 +147,17 @@ int main(int argc, char** argv) {
     SurfaceProjector input(m);
     if (memory) {
       auto last = std::make_shared<std::string>();
-      opt.progress = [last, &m](int, const char* what) {
-        if (*last != what) {
+      auto lastPct = std::make_shared<int>(-1);
+      opt.progress = [last, lastPct, &m](int pct, const char* what) {
+        // at every stage, and every 5 percent within one (the sweeps report one stage each)
+        if (*last != what || pct / 5 != *lastPct / 5) {
           *last = what;
+          *lastPct = pct;
           // the vectors' sizes and capacities: a vector that outgrows its room is copied whole
-          std::printf("  memory: %-45s rss %7.1f MiB, peak %7.1f MiB; vert %zu/%zu, face %zu/%zu\n", what,
-                      StatusMiB("VmRSS"), StatusMiB("VmHWM"), m.vert.size(), m.vert.capacity(), m.face.size(),
-                      m.face.capacity());
+          const HeapMiB h = Heap();
+          std::printf("  memory: %-45s %3d%% rss %7.1f MiB, peak %7.1f MiB; heap used %7.1f, freed %6.1f MiB; "
+                      "vert %zu/%zu, face %zu/%zu\n", what, pct, StatusMiB("VmRSS"), StatusMiB("VmHWM"), h.used,
+                      h.freed, m.vert.size(), m.vert.capacity(), m.face.size(), m.face.capacity());
           std::fflush(stdout);
         }
         return true;

@@ -79,13 +79,15 @@ TEST(MemoryJournal, CommitGivesBackWhatALongEditLoggedAndKeepsASmallLogsRoom) {
   TMesh m;
   test::HexPatch(m, 6);
   EditJournal<TMesh> j(m);
-  // a long edit: far more records than the journal keeps between edits
-  for (size_t k = 0; k < 4 * EditJournal<TMesh>::kRetainedRecords; ++k) {
+  // a long edit: more records than the journal keeps between edits, in more chunks than it may
+  // keep (the loop's bound only stops a journal that never grows)
+  for (size_t k = 0; j.Bytes() <= EditJournal<TMesh>::RetainedBytesLimit() && k < 10000000; ++k) {
     j.SaveFace(&m.face[k % m.face.size()]);
     j.SaveVertex(&m.vert[k % m.vert.size()]);
   }
   const size_t whileLogging = j.Bytes();
   EXPECT_GT(whileLogging, EditJournal<TMesh>::RetainedBytesLimit());
+  EXPECT_GT(j.LoggedFaces(), EditJournal<TMesh>::kRetainedRecords);
   j.Commit();
   EXPECT_EQ(j.LoggedFaces(), 0u);
   EXPECT_EQ(j.Bytes(), 0u) << "a long edit's log must be given back at the commit";

@@ -464,3 +464,43 @@ TEST_P(GlobalRelaxHoles, BoundaryVerticesSlideOnTheOriginalBoundary) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Corpus, GlobalRelaxHoles, ::testing::Values("holes.off", "mushroom.off", "mesh_with_border.off"));
+
+// A region larger than RelaxOptions::cachedStarsUpTo walks each star when it needs it instead of
+// keeping them all (issue 14's memory target: a whole mesh's stars were ~350 bytes a vertex).
+// Both ways must move every vertex to the same position, to the bit, and set the same normals:
+// knot1 after edits, relaxed whole (its vertices far above the default bound), once with every
+// star kept and once with none.
+TEST(Relaxation, LocalWalkingStarsAsNeededGivesTheSamePositionsAsKeepingThem) {
+  TMesh kept, walked;
+  ASSERT_TRUE(test::LoadCorpus(kept, "bunny00.off")) << "corpus mesh missing (run scripts/setup.sh)";
+  ASSERT_TRUE(test::LoadCorpus(walked, "bunny00.off"));
+  SurfaceProjector original(kept);
+  GenerateQuadruplesEvery(kept, 97);
+  GenerateQuadruplesEvery(walked, 97);
+  ASSERT_EQ(kept.vert.size(), walked.vert.size());
+  const std::vector<int> all = AllVertices(kept);
+  RelaxOptions opt;
+  opt.iterations = 3;
+  ASSERT_GT(all.size(), opt.cachedStarsUpTo) << "the default must walk a whole mesh's stars as needed";
+  RelaxOptions keepAll = opt;
+  keepAll.cachedStarsUpTo = all.size();
+  const RelaxReport a = LocalRelax(kept, all, &original, keepAll);
+  RelaxOptions keepNone = opt;
+  keepNone.cachedStarsUpTo = 0;
+  const RelaxReport b = LocalRelax(walked, all, &original, keepNone);
+  EXPECT_GT(a.moved, 1000);
+  EXPECT_EQ(a.moved, b.moved);
+  EXPECT_EQ(a.rejected, b.rejected);
+  size_t differing = 0, moved = 0;
+  for (size_t i = 0; i < kept.vert.size(); ++i) {
+    differing += kept.vert[i].P() != walked.vert[i].P();
+  }
+  for (size_t i = 0; i < kept.face.size(); ++i) differing += kept.face[i].N() != walked.face[i].N();
+  TMesh input;
+  ASSERT_TRUE(test::LoadCorpus(input, "bunny00.off"));
+  GenerateQuadruplesEvery(input, 97);
+  for (size_t i = 0; i < kept.vert.size(); ++i) moved += kept.vert[i].P() != input.vert[i].P();
+  EXPECT_EQ(differing, 0u);
+  EXPECT_GT(moved, 1000u) << "the relaxation moved the vertices (the comparison is not of two unmoved meshes)";
+  EXPECT_TRUE(CheckInvariants(walked).ok);
+}

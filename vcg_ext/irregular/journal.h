@@ -13,6 +13,9 @@
 // Elements are recorded by index, not pointer, because adding elements may reallocate the
 // vertex and face vectors (vcg's Allocator then fixes the mesh's own pointers, not ours).
 //
+// The logs are chunked (chunked_log.h): a long edit's records never move as the log grows, and
+// the memory they held goes back to the system at the commit (issue 14's memory target).
+//
 // Attributes (attribute_transfer.h): when the mesh has them, a saved face also keeps its wedge
 // texture coordinates, colour and quality, and a saved vertex its colour, quality and texture
 // coordinate, in separate logs, so a mesh without them pays nothing (vcglib's HasPer...
@@ -26,6 +29,8 @@
 #include <vector>
 
 #include <vcg/complex/complex.h>
+
+#include "chunked_log.h"
 
 namespace vcg_ext {
 namespace irregular {
@@ -76,15 +81,18 @@ class EditJournal {
     size_t stamp, idx;
     VertexType v;
   };
-  /// The six logs of records: what the journal keeps since its last commit, and what a Replay
-  /// carries.
-  struct Logs {
-    std::vector<FaceRecord> face;
-    std::vector<VertexRecord> vert;
-    std::vector<FaceAttrRecord> faceAttr;
-    std::vector<VertexAttrRecord> vertAttr;
-    std::vector<WholeFace> faceWhole;
-    std::vector<WholeVertex> vertWhole;
+  template <class T>
+  using Vector = std::vector<T>;
+  /// The six logs of records: what the journal keeps since its last commit (Seq = ChunkedLog),
+  /// and what a Replay carries (Seq = std::vector).
+  template <template <class> class Seq>
+  struct LogsOf {
+    Seq<FaceRecord> face;
+    Seq<VertexRecord> vert;
+    Seq<FaceAttrRecord> faceAttr;
+    Seq<VertexAttrRecord> vertAttr;
+    Seq<WholeFace> faceWhole;
+    Seq<WholeVertex> vertWhole;
     /// Calls fn on each of the six vectors.
     template <class Fn>
     void ForEach(Fn fn) {
@@ -171,7 +179,7 @@ class EditJournal {
     size_t faces0 = 0, verts0 = 0;  ///< the vectors' sizes at the checkpoint (checked by Apply)
     size_t faces = 0, verts = 0;    ///< and after the edit
     int fn = 0, vn = 0;
-    Logs logs;  ///< the final state of each element (regular and whole records; stamps unused)
+    LogsOf<Vector> logs;  ///< the final state of each element (regular and whole records; stamps unused)
     bool Empty() const { return logs.face.empty() && logs.vert.empty() && faces == faces0 && verts == verts0; }
   };
 
@@ -237,12 +245,12 @@ class EditJournal {
     RestoreInterleaved(log_.vert, c.vertLog, log_.vertWhole, c.vertWhole);
     for (size_t k = log_.faceAttr.size(); k-- > c.faceAttrLog;) Restore(log_.faceAttr[k]);
     for (size_t k = log_.vertAttr.size(); k-- > c.vertAttrLog;) Restore(log_.vertAttr[k]);
-    log_.face.resize(c.faceLog);
-    log_.vert.resize(c.vertLog);
-    log_.faceAttr.resize(c.faceAttrLog);
-    log_.vertAttr.resize(c.vertAttrLog);
-    log_.faceWhole.erase(log_.faceWhole.begin() + long(c.faceWhole), log_.faceWhole.end());
-    log_.vertWhole.erase(log_.vertWhole.begin() + long(c.vertWhole), log_.vertWhole.end());
+    log_.face.TruncateTo(c.faceLog);
+    log_.vert.TruncateTo(c.vertLog);
+    log_.faceAttr.TruncateTo(c.faceAttrLog);
+    log_.vertAttr.TruncateTo(c.vertAttrLog);
+    log_.faceWhole.TruncateTo(c.faceWhole);
+    log_.vertWhole.TruncateTo(c.vertWhole);
     // Truncating never reallocates, so every pointer into the kept part stays valid.
     if (m_.face.size() > c.faces) m_.face.resize(c.faces);
     if (m_.vert.size() > c.verts) m_.vert.resize(c.verts);
@@ -250,35 +258,34 @@ class EditJournal {
     m_.vn = c.vn;
   }
 
-  /// Forgets the log up to now (the edits become permanent for this journal). A log that grew
-  /// past kRetainedRecords (one long edit) gives its memory back, so what a journal holds
-  /// between edits is bounded by that, not by the longest edit so far; smaller ones keep their
-  /// capacity for the next edit.
+  /// Forgets the log up to now (the edits become permanent for this journal). A log that held
+  /// more than kRetainedRecords (one long edit) gives all its chunks back to the system, so
+  /// what a journal holds between edits is bounded (RetainedBytesLimit), not by the longest
+  /// edit so far; a shorter one keeps its chunk for the next edit (no allocation per edit).
   void Commit() {
     log_.ForEach([](auto& log) { Forget(log); });
   }
 
   size_t LoggedFaces() const { return log_.face.size(); }
   size_t LoggedVertices() const { return log_.vert.size(); }
-  /// Bytes the logs hold (their capacities), for memory accounting.
+  /// Bytes the logs hold (their chunks, mapped address space: only the pages written are
+  /// resident), for memory accounting.
   size_t Bytes() const {
     size_t bytes = 0;
-    log_.ForEach([&](const auto& log) { bytes += log.capacity() * sizeof(log[0]); });
+    log_.ForEach([&](const auto& log) { bytes += log.Bytes(); });
     return bytes;
   }
-  /// Records per log kept allocated after a Commit (a few edits' worth).
+  /// Records a log may have held for its chunk to be kept after a Commit (a few edits' worth).
   static constexpr size_t kRetainedRecords = 4096;
-  /// The most Bytes() can be right after a Commit.
-  static constexpr size_t RetainedBytesLimit() {
-    return kRetainedRecords * (sizeof(FaceRecord) + sizeof(VertexRecord) + sizeof(FaceAttrRecord) +
-                               sizeof(VertexAttrRecord) + sizeof(WholeFace) + sizeof(WholeVertex));
-  }
+  /// The most Bytes() can be right after a Commit: a chunk per log, and its pointer.
+  static constexpr size_t RetainedBytesLimit() { return 6 * (ChunkedLog<FaceRecord>::kChunkBytes + sizeof(void*)); }
 
  private:
   template <class Log>
   static void Forget(Log& log) {
-    if (log.capacity() > kRetainedRecords) Log().swap(log);
-    else log.clear();
+    const bool longEdit = log.size() > kRetainedRecords;
+    log.clear();
+    log.ReleaseBeyond(longEdit ? 0 : std::min(kRetainedRecords, log.kPerChunk));  // at most one chunk
   }
 
   /// Grows `vec` back to the size the records since `from` and the checkpoint size `size` need
@@ -418,7 +425,7 @@ class EditJournal {
   }
 
   MeshType& m_;
-  Logs log_;
+  LogsOf<ChunkedLog> log_;
 };
 
 }  // namespace irregular

@@ -151,6 +151,10 @@ struct RelaxOptions {
   double damping = 1.0;           ///< global: share of the solved displacement applied per round
   const BoundaryCurve* boundaryCurve = nullptr;  ///< if set, boundary vertices slide along it (header)
   double cornerAngleDeg = 30;     ///< with boundaryCurve: |corner angle - 180| >= this stays fixed
+  size_t cachedStarsUpTo = 8192;  ///< local: a region of up to this many vertices has its stars walked once
+                                  ///< per call and kept (speed: every edit's relaxation); a larger one walks
+                                  ///< each when it needs it (memory: a whole mesh's would be ~350 bytes a
+                                  ///< vertex). The same positions either way.
 };
 
 struct RelaxReport {
@@ -318,20 +322,31 @@ RelaxReport LocalRelax(MeshType& m, const std::vector<int>& region, const Surfac
   auto t0 = std::chrono::steady_clock::now();
   RelaxReport rep;
   // O(region x sweeps): called after every edit, so nothing here may be sized by the mesh.
-  // Only positions change here, never the connectivity: each star is walked once per call
-  // instead of once per sweep and once more for the normals (the walks were an eighth of
-  // Automatic Reduction's time). The buffer is reused from call to call (LocalRelax does
-  // not call itself).
+  // Only positions change here, never the connectivity: a local edit's region (up to
+  // opt.cachedStarsUpTo vertices) has each star walked once per call instead of once per sweep
+  // and once more for the normals (the walks were an eighth of Automatic Reduction's time), in
+  // a buffer reused from call to call (LocalRelax does not call itself). A larger region (the
+  // final relaxation of a whole mesh) walks each star when it needs it instead: cached, a
+  // million-face mesh's stars took ~350 bytes a vertex, 200 MB from the final relaxation on,
+  // kept by the thread's buffer after the run (issue 14's memory target). The same stars
+  // either way, so the same positions to the bit.
+  const bool cached = region.size() <= opt.cachedStarsUpTo;
   static thread_local std::vector<VertexStar<MeshType>> stars;
   stars.clear();
-  stars.reserve(region.size());
-  for (int v : region) stars.push_back(StarOf<MeshType>(&m.vert[size_t(v)]));
+  if (cached)
+    for (int v : region) stars.push_back(StarOf<MeshType>(&m.vert[size_t(v)]));
+  VertexStar<MeshType> walked;
+  auto starAt = [&](size_t k) -> const VertexStar<MeshType>& {
+    if (cached) return stars[k];
+    walked = StarOf<MeshType>(&m.vert[size_t(region[k])]);
+    return walked;
+  };
   for (int it = 0; it < opt.iterations; ++it) {
     for (size_t k = 0; k < region.size(); ++k) {
       const int v = region[k];
       if (!relax_detail::Movable(m, v, creaseIn)) continue;
       auto* vp = &m.vert[size_t(v)];
-      const VertexStar<MeshType>& st = stars[k];
+      const VertexStar<MeshType>& st = starAt(k);
       if (st.neighbors.empty()) continue;
       if (st.boundary) {
         if (!relax_detail::SlidesOnBoundary(st, opt)) continue;  // fixed: no curve to slide on, or a corner
@@ -371,8 +386,8 @@ RelaxReport LocalRelax(MeshType& m, const std::vector<int>& region, const Surfac
       ++rep.moved;
     }
   }
-  for (const VertexStar<MeshType>& st : stars)
-    for (auto& c : st.corners) c.f->N() = vcg::TriangleNormal(*c.f).Normalize();
+  for (size_t k = 0; k < region.size(); ++k)
+    for (auto& c : starAt(k).corners) c.f->N() = vcg::TriangleNormal(*c.f).Normalize();
   rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return rep;
 }
