@@ -60,8 +60,9 @@ enum class AtomicVia { Any = 0, Flip = 1, Collapse = 2, Split = 3 };
 enum class PairSide { Any = 0, Ccw = 1, Cw = 2 };
 
 /// The named roles of an atomic operation's result; shared by predictions and outcomes.
-/// Vertex indices are those after the operation: a vertex a split creates gets index
-/// m.vert.size() at the time of the split (vcg appends), so a prediction names it too.
+/// Vertex indices are those after the operation: a vertex a split creates gets the index the
+/// editor gives it (MeshEditor::NextCreatedVertex: m.vert.size() when appended, or a dead
+/// slot's, slot_pool.h), so a prediction names it too.
 struct AtomicRoles {
   std::vector<GraphStep> steps;  ///< the graph operations, in order
   int moved = -1;                ///< the moved v5 or v7 (fig. 7), -1 if none
@@ -724,8 +725,9 @@ class AtomicOperations {
   static const int kPairByAngle0 = 0, kPairByAngle1 = 1, kPairByAngle2 = 2, kPairByAngle3 = 3, kPairByAngle4 = 4,
                    kPairByAngle5 = 5;
 
-  /// Index the k-th vertex a split creates from now would get (vcg appends vertices).
-  int NextCreated(int k) { return int(ed_.Mesh().vert.size()) + k; }
+  /// Index the k-th vertex a split creates from now would get (appended, or a dead slot's:
+  /// slot_pool.h).
+  int NextCreated(int k) { return ed_.NextCreatedVertex(k); }
 
   /// The vertex opposite `p` across edge (a, b); -1 if the edge is missing or on the boundary.
   int Beyond(int a, int b, int p) {

@@ -61,7 +61,15 @@ class AutomaticReduction {
         state_(m, ed_, opt_),
         guard_(m, original, opt_, ed_, state_, &crease_),
         cancel_(m, ed_, comp_, guard_, state_),
-        transport_(m, opt_, ed_, comp_.atomic(), guard_, state_, cancel_) {}
+        transport_(m, opt_, ed_, comp_.atomic(), guard_, state_, cancel_) {
+    // A crease or frozen vertex keeps its index-keyed flag through a whole-run restore
+    // (RestoreSnapshot), so its slot is never reused; a reused slot's run state is forgotten.
+    ed_.slotPool().Enable(opt_.reuseDeadSlots, [this](int v) {
+      if (state_.Frozen(v) || (size_t(v) < crease_.size() && crease_[size_t(v)])) return false;
+      state_.ForgetVertex(v);
+      return true;
+    });
+  }
 
   /// Runs the reduction. Postcondition on success: the symmetric Hausdorff distance of the
   /// result to the input, as measured by HausdorffPercent (quality.h), is within the budget
@@ -116,6 +124,7 @@ class AutomaticReduction {
     if (!rep.allUndone) Explain(rep);
     rep.undoneAt = CompactedIndices(state_.UndoneAt());
     CompactKeepingAdjacency(m_);
+    ed_.slotPool().Clear();  // the pooled slots are gone
     Histogram(rep.histogramAfter, rep.irregularAfter);
     rep.boundaryIrregularAfter = CountIrregularByPlace(m_).boundary;
     rep.globalRelaxUndone = !globalKept_;

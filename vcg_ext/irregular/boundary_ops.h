@@ -681,11 +681,10 @@ class BoundaryOperations {
     auto cp = ed_.Mark();
     auto& journal = ed_.journal();
     // allocate first: adding elements may move the vectors (the star is read afterwards)
-    vcg::tri::Allocator<MeshType>::AddVertices(m, 1);
-    vcg::tri::Allocator<MeshType>::AddFaces(m, 2);
-    const int ei = int(m.vert.size()) - 1;
-    FaceType* F0 = &m.face[m.face.size() - 2];
-    FaceType* F1 = &m.face[m.face.size() - 1];
+    int ei, nf[2];
+    ed_.slotPool().Take(m, journal, 1, 2, &ei, nf);
+    FaceType* F0 = &m.face[size_t(nf[0])];
+    FaceType* F1 = &m.face[size_t(nf[1])];
     VertexType* y = ed_.V(yi);
     VertexType* e = ed_.V(ei);
     VertexStar<MeshType> st = ed_.Star(yi);

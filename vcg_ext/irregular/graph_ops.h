@@ -55,6 +55,7 @@
 #include "attribute_transfer.h"
 #include "journal.h"
 #include "result.h"
+#include "slot_pool.h"
 #include "topology.h"
 
 namespace vcg_ext {
@@ -87,8 +88,18 @@ class MeshEditor {
   Journal& journal() { return journal_; }
   GeometryOptions& geometry() { return geom_; }
   Checkpoint Mark() const { return journal_.Mark(); }
-  void RollbackTo(const Checkpoint& c) { journal_.RollbackTo(c); }
-  void Commit() { journal_.Commit(); }
+  void RollbackTo(const Checkpoint& c) {
+    journal_.RollbackTo(c);
+    slots_.RollbackTo(c);
+  }
+  void Commit() {
+    slots_.Harvest(m_, journal_);
+    journal_.Commit();
+  }
+  /// Dead slots for new elements (slot_pool.h): off by default; Automatic Reduction turns it on.
+  SlotPool<MeshType>& slotPool() { return slots_; }
+  /// Index the k-th vertex a split creates from now will get (k = 0: the next one).
+  int NextCreatedVertex(int k) const { return slots_.NextVertex(m_, k); }
 
   VertexType* V(int i) { return &m_.vert[size_t(i)]; }
   int Index(const VertexType* v) const { return int(vcg::tri::Index(m_, v)); }
@@ -569,11 +580,10 @@ class MeshEditor {
   Result SplitWith(int wi, int ai, int bi, ScalarType s, int* created) {
     Checkpoint cp = Mark();
     // Allocate first: adding elements may move the vectors, so take pointers afterwards.
-    vcg::tri::Allocator<MeshType>::AddVertices(m_, 1);
-    vcg::tri::Allocator<MeshType>::AddFaces(m_, 2);
-    const int xi = int(m_.vert.size()) - 1;
-    FaceType* fb = &m_.face[m_.face.size() - 2];
-    FaceType* fa = &m_.face[m_.face.size() - 1];
+    int xi, nf[2];
+    slots_.Take(m_, journal_, 1, 2, &xi, nf);
+    FaceType* fb = &m_.face[size_t(nf[0])];
+    FaceType* fa = &m_.face[size_t(nf[1])];
     VertexType* w = V(wi);
     VertexType* x = V(xi);
     VertexType* a = V(ai);
@@ -658,10 +668,9 @@ class MeshEditor {
 
   Result SplitBoundaryWith(int wi, int ai, ScalarType s, int* created) {
     Checkpoint cp = Mark();
-    vcg::tri::Allocator<MeshType>::AddVertices(m_, 1);
-    vcg::tri::Allocator<MeshType>::AddFaces(m_, 1);
-    const int xi = int(m_.vert.size()) - 1;
-    FaceType* F = &m_.face.back();
+    int xi, fi;
+    slots_.Take(m_, journal_, 1, 1, &xi, &fi);
+    FaceType* F = &m_.face[size_t(fi)];
     VertexType* w = V(wi);
     VertexType* x = V(xi);
     VertexType* a = V(ai);
@@ -724,6 +733,7 @@ class MeshEditor {
 
   MeshType& m_;
   Journal journal_;
+  SlotPool<MeshType> slots_;
   GeometryOptions geom_;
   AttributeTransfer<MeshType> attr_;
 };

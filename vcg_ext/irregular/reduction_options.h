@@ -133,6 +133,10 @@ struct ReductionOptions {
                                             ///< or a global solve (eq. 5) followed by local sweeps
   int globalRelaxRounds = 3;            ///< default 3: solve-and-project rounds of the final global relaxation
   int finalLocalSweeps = 5;             ///< default 5: local sweeps over the whole mesh at the end (0: none)
+  bool reuseDeadSlots = true;           ///< default true: a split takes the slot of a vertex or face a kept edit
+                                        ///< deleted before it appends one (slot_pool.h), so the vectors grow by
+                                        ///< what the run adds, not by what it adds and deletes (bunny00 subdivided
+                                        ///< once: 150,818 -> 212,417 vertex slots without; issue 14's memory target)
   bool boundaryStage = true;            ///< default true: once per sweep, interior irregular vertices near a
                                         ///< boundary are moved into it or cancelled there (boundary_reduction.h)
   BoundaryReductionOptions boundary;    ///< the boundary stage's settings (its boundaryLimit is set by the run:

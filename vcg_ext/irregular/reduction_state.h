@@ -228,6 +228,15 @@ class ReductionState {
       ed_.Commit();
     }
   }
+  /// Vertex slot v is dead and will be reused (slot_pool.h): forget what the run kept of the
+  /// vertex that was there, so the new one starts with none of it.
+  void ForgetVertex(int v) {
+    undoneAt_.erase(v);
+    effort_.erase(v);
+    if (size_t(v) < failedAt_.size()) failedAt_[size_t(v)] = -1;
+    if (size_t(v) < triedAt_.size()) triedAt_[size_t(v)] = -1;
+    if (size_t(v) < triedUnchanged_.size()) triedUnchanged_[size_t(v)] = 0;
+  }
   /// The guard undid an edit that tried to cancel or move `subjects`.
   void Undone(const std::vector<int>& subjects) {
     for (int v : subjects)
@@ -330,6 +339,7 @@ class ReductionState {
     ed_.Commit();  // what an interrupted edit logged is overwritten below
     snapshot_.Restore(m_);
     snapshot_.Clear();
+    ed_.slotPool().Clear();  // pooled slots may hold live vertices again
   }
   /// Forgets the snapshot and gives its memory back.
   void DropSnapshot() {

@@ -115,7 +115,7 @@ struct AggregationRequest {
 template <class MeshType>
 class TopologyScratch {
  public:
-  explicit TopologyScratch(MeshEditor<MeshType>& ed) : ed_(ed), next_(int(ed.Mesh().vert.size())) {}
+  explicit TopologyScratch(MeshEditor<MeshType>& ed) : ed_(ed) {}
 
   bool IsLive(int v) { return created_.count(v) ? !dead_.count(v) : (ed_.IsLive(v) && !dead_.count(v)); }
   bool IsBoundary(int v) {
@@ -213,7 +213,7 @@ class TopologyScratch {
   int Split(int w, int a, int b) {
     std::vector<int> rw = Ring(w);
     const int n = int(rw.size()), i = IndexIn(w, a), j = IndexIn(w, b);
-    const int x = next_++;
+    const int x = ed_.NextCreatedVertex(createdCount_++);  // the index the real split will give
     created_.insert(x);
     std::vector<int> keep, give;
     for (int k = i;; k = (k + 1) % n) {
@@ -276,7 +276,7 @@ class TopologyScratch {
   }
 
   MeshEditor<MeshType>& ed_;
-  int next_;
+  int createdCount_ = 0;  ///< splits simulated so far (the next gets NextCreatedVertex of it)
   std::unordered_map<int, std::vector<int>> ring_;
   std::unordered_map<int, bool> boundary_;
   std::set<int> dead_, created_, touched_;
