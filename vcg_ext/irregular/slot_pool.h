@@ -47,7 +47,6 @@ class SlotPool {
     vertexReusable_ = std::move(vertexReusable);
     Clear();
   }
-  bool Enabled() const { return on_; }
 
   /// Forgets every pooled slot (they stay deleted in the mesh, appended past as before).
   void Clear() {
@@ -59,9 +58,9 @@ class SlotPool {
 
   /// Index the k-th vertex created from now will get (k = 0: the next one).
   int NextVertex(const MeshType& m, int k) const {
-    if (on_ && size_t(k) < verts_.size()) return verts_[verts_.size() - 1 - size_t(k)];
-    const size_t pooled = on_ ? verts_.size() : 0;
-    return int(m.vert.size() + size_t(k) - pooled);
+    // the pool stays empty while off (Harvest adds nothing then)
+    if (size_t(k) < verts_.size()) return verts_[verts_.size() - 1 - size_t(k)];
+    return int(m.vert.size() + size_t(k) - verts_.size());
   }
 
   /// Slots for nv new vertices and nf new faces, their indices in v[0..nv) and f[0..nf):
@@ -74,7 +73,7 @@ class SlotPool {
                         int& live, int n, int* out) {
       int appended = 0;
       for (int k = 0; k < n; ++k) {
-        if (!on_ || pool.empty()) {
+        if (pool.empty()) {
           out[k] = -1 - appended++;
           continue;
         }
