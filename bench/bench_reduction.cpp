@@ -7,8 +7,8 @@
 // (containing '/').
 // options (ReductionOptions fields): maxTravel, glideTravel, targetsPerPair, maxSweeps,
 // localRelaxIterations, minAngle, budget (Hausdorff, percent of the diagonal), maxRefusals
-// (maxRefusalsPerRegion; 0: no bound), partialAbsorption (0/1), angleRepairRounds,
-// angleRepairSlack, travelReference (travelReferenceVertices), maxTravelScale.
+// (maxRefusalsPerRegion; 0: no bound), partialAbsorption (0/1), reuseDeadSlots (0/1), angleRepairRounds,
+// angleRepairSlack, travelReference (travelReferenceVertices), maxTravelScale, creaseDeg.
 // files: saveRemeshed=<path> writes the remeshed input (OFF), saveResult=<path> the result, for
 // profiling the reduction alone on a fixed input and for comparing two runs byte by byte (with
 // several models, the model's name is appended).
@@ -120,6 +120,8 @@ int main(int argc, char** argv) {
     else if (key == "travelReference") opt.travelReferenceVertices = int(v);
     else if (key == "maxTravelScale") opt.maxTravelScale = v;
     else if (key == "partialAbsorption") opt.partialAbsorption = v != 0;
+    else if (key == "reuseDeadSlots") opt.reuseDeadSlots = v != 0;
+    else if (key == "creaseDeg") opt.creaseDeg = v;
     else if (key == "timeLimit") opt.timeLimitSeconds = v > 0 ? v : opt.timeLimitSeconds;
     else if (key == "memory") memory = v != 0;
     else if (key == "loadOnly") loadOnly = v != 0;

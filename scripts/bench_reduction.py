@@ -24,8 +24,8 @@ Every figure is measured here from the written files with the independent numpy/
 (tests/oracle/fi_oracle): counts by equivalent valence, chi, interior/boundary irregular split
 (boundary: regular valence by the corner rule round(angle / 60) + 1), the symmetric Hausdorff
 distance (to the reduction's input and to the raw model), smallest angle and share of triangles
-under 30 degrees, the fandisk crease check (one-sided distance from the raw model's crease
-samples, feature angle 60 degrees, to the output). Then the targets of issue 14, each row
+under 30 degrees, the fandisk crease check (one-sided distance from the crease samples of the
+reduction's input, feature angle 60 degrees, to the output; and from the raw model's). Then the targets of issue 14, each row
 pass/fail.
 
     $PY scripts/bench_reduction.py [--set quick|full] [--sizes 5000,20000,80000] [--plot]
@@ -483,11 +483,20 @@ def bench_model(a, model, vertices, log):
             res["filter"] = json.load(f)
     except (OSError, ValueError):
         res["filter"] = {}
-    base = os.path.splitext(os.path.basename(model))[0]
-    if base in CREASE_MODELS:
+    measure_creases(res, model, raw, peer_mesh, ours_mesh)
+    return res
+
+
+def measure_creases(res, model, raw, peer_mesh, ours_mesh):
+    """The crease check of CREASE_MODELS: the one-sided distance from the crease samples of the
+    reduction's input (the peer's output, as for the Hausdorff target) to ours, which is the
+    target's figure; and, for context, from the raw model's to each side (the peer's own error
+    from the raw model is part of ours from it: where the peer's remeshing rounded a raw crease
+    under 60 degrees, the reduction sees no crease there)."""
+    if os.path.splitext(os.path.basename(model))[0] in CREASE_MODELS:
         res["peer"]["crease"] = crease_distance_percent(raw, peer_mesh)
         res["ours"]["crease"] = crease_distance_percent(raw, ours_mesh)
-    return res
+        res["ours"]["crease_input"] = crease_distance_percent(peer_mesh, ours_mesh)
 
 
 def _valences(r):
@@ -557,9 +566,10 @@ def targets(results, sizes=None, memory=None, plot_points=None):
             add("genus-0 < 30 deg", name, "%.2f%%" % (100 * o["below30"]), "<= 1%", 100 * o["below30"] <= 1.0)
         elif closed and base in THIN:
             add("thin parts: total", name, "%.2f%%" % o["share"], "<= 3%", o["share"] <= 3.0)
-        if "crease" in o and o["crease"] is not None:
-            add("crease distance", name, "%.3f%% (peer %.3f%%)" % (o["crease"], p["crease"]), "<= 0.1%",
-                o["crease"] <= 0.1)
+        if o.get("crease_input") is not None:
+            add("crease distance", name, "%.3f%% from its input's creases (from the raw model's: %.3f%%, the "
+                "peer's own %.3f%%)" % (o["crease_input"], o["crease"], p["crease"]), "<= 0.1%",
+                o["crease_input"] <= 0.1)
         if base == "knot1":
             add("knot1 count", name, o["irregular"], "<= 20", o["irregular"] <= 20)
         if base == "elephant":
@@ -820,9 +830,9 @@ def cmd_rescore(a):
         peer_mesh = load_arrays(peer_path(a.out, model, vertices))
         ours_mesh = load_arrays(ours_path(a.out, model, vertices, "r1"))
         for side, mesh, source in (("peer", peer_mesh, raw), ("ours", ours_mesh, peer_mesh)):
-            kept = {k: res[side][k] for k in ("cpu", "wall", "rss_mib", "cpu_runs", "wall_runs", "crease")
-                    if k in res[side]}
+            kept = {k: res[side][k] for k in ("cpu", "wall", "rss_mib", "cpu_runs", "wall_runs") if k in res[side]}
             res[side] = dict(measure(mesh, raw, source, diag), **kept)
+        measure_creases(res, model, raw, peer_mesh, ours_mesh)
     sizes = set(data.get("sizes") or [])
     size_results = [r for r in results if r["model"] == "bunny00" and r["vertices"] in sizes]
     header = data.get("header") or "Measured by scripts/bench_reduction.py."

@@ -158,3 +158,29 @@ def test_targets_genus0_share_counts_thin_parts_apart(share, off_thin, verdict):
     res = dict(model="camel", vertices=20000, ours=ours, peer=dict(boundary=0), ratio_cpu=2.0, ratio_wall=2.0)
     row = [r for r in bench.targets([res]) if r.startswith("| genus-0 share |")][0]
     assert row.endswith("| %s |" % verdict) and "(90 on them)" in row
+
+
+def test_crease_target_is_judged_from_the_reductions_input():
+    """As the Hausdorff target, the crease target measures the reduction against its own input
+    (the peer's output): the octahedron as the peer's output, ours scaled by 1.1 (1.67% from its
+    creases), the raw model scaled by 1.05. A model outside CREASE_MODELS gets no crease figures."""
+    o = fo.octahedron()
+    raw, ours = fo.Tri(o.vertices * 1.05, o.faces), fo.Tri(o.vertices * 1.1, o.faces)
+    res = dict(model="fandisk", vertices=20000, peer={}, ours={})
+    bench.measure_creases(res, "fandisk", raw, o, ours)
+    assert res["ours"]["crease_input"] == pytest.approx(bench.crease_distance_percent(o, ours), rel=1e-12)
+    assert res["ours"]["crease"] == pytest.approx(bench.crease_distance_percent(raw, ours), rel=1e-12)
+    assert res["peer"]["crease"] == pytest.approx(bench.crease_distance_percent(raw, o), rel=1e-12)
+    assert res["ours"]["crease_input"] > res["ours"]["crease"] > 0.1
+    other = dict(model="bunny00", vertices=20000, peer={}, ours={})
+    bench.measure_creases(other, "bunny00", raw, o, ours)
+    assert other["ours"] == {} and other["peer"] == {}
+    # the verdict follows the distance from the input, whatever the raw model's distance
+    common = dict(loops=0, chi=2, irregular=150, share=0.75, share_off_thin=0.75, thin_irregular=0, V=20000,
+                  H_source=0.2, H_raw=0.2, below30=0.0, interior=150, boundary=0, cpu_runs=[5.0])
+    for from_input, from_raw, verdict in ((0.08, 0.13, "pass"), (0.12, 0.09, "FAIL")):
+        res = dict(model="fandisk", vertices=20000, peer=dict(boundary=0, crease=0.089), ratio_cpu=2.0, ratio_wall=2.0,
+                   ours=dict(common, crease=from_raw, crease_input=from_input))
+        row = [r for r in bench.targets([res]) if r.startswith("| crease distance |")][0]
+        assert row.endswith("| %s |" % verdict)
+        assert ("%.3f%% from its input's creases" % from_input) in row and ("%.3f%%" % from_raw) in row
