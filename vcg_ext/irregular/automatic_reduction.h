@@ -362,7 +362,7 @@ class AutomaticReduction {
   /// The final relaxation of everything not frozen: global (eq. 5) if asked, kept only if it
   /// does not lower the smallest angle (the global solve equalizes lengths and angles on
   /// average and can squeeze a few triangles next to the remaining irregular vertices), then
-  /// local sweeps, kept only if they keep the budget and the smallest angle (above the bound,
+  /// local sweeps, kept only if they keep the budget (with Run's margin) and the smallest angle (above the bound,
   /// or as it was). Not journaled: the whole-run undo restores the snapshot.
   /// Returns the final positions' HausdorffPercent when it measured them (the sweeps kept),
   /// -1 otherwise: Run measures only then, as each measurement costs a grid over the mesh.
@@ -408,7 +408,11 @@ class AutomaticReduction {
         MeasureShape(m_).minAngleDeg < std::min(opt_.minAngleDeg, angleBeforeSweeps) - 1e-9;
     if (opt_.finalLocalSweeps <= 0) return -1;
     const double measured = angleDropped ? -1 : HausdorffPercent(m_, original_);
-    if (measured >= 0 && measured <= opt_.hausdorffBudgetPercent) return measured;
+    // kept only under the margin Run verifies against: sweeps that end between the margin and
+    // the budget made Run redo the whole reduction with a stricter guard, when the positions
+    // before them were within it (native bench, the peer's armadillo at 20K: sweeps to 0.494%,
+    // two retries, 32 s; without the sweeps 0.452% in 10.5 s)
+    if (measured >= 0 && measured <= kVerifyMargin * opt_.hausdorffBudgetPercent) return measured;
     for (size_t i = 0; i < all.size(); ++i) ed_.V(all[i])->P() = beforeSweeps[i];
     for (auto& f : m_.face)
       if (!f.IsD()) f.N() = vcg::TriangleNormal(f).Normalize();
