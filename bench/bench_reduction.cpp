@@ -7,8 +7,9 @@
 // (containing '/').
 // options (ReductionOptions fields): maxTravel, glideTravel, targetsPerPair, maxSweeps,
 // localRelaxIterations, minAngle, budget (Hausdorff, percent of the diagonal), maxRefusals
-// (maxRefusalsPerRegion; 0: no bound), partialAbsorption (0/1), reuseDeadSlots (0/1), angleRepairRounds,
-// angleRepairSlack, travelReference (travelReferenceVertices), maxTravelScale, creaseDeg.
+// (maxRefusalsPerRegion; 0: no bound), partialAbsorption (0/1), reuseDeadSlots (0/1),
+// angleRepairRounds, angleRepairSlack, travelReference (travelReferenceVertices),
+// maxTravelScale, creaseDeg.
 // files: saveRemeshed=<path> writes the remeshed input (OFF), saveResult=<path> the result, for
 // profiling the reduction alone on a fixed input and for comparing two runs byte by byte (with
 // several models, the model's name is appended).

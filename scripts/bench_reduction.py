@@ -25,8 +25,8 @@ Every figure is measured here from the written files with the independent numpy/
 (boundary: regular valence by the corner rule round(angle / 60) + 1), the symmetric Hausdorff
 distance (to the reduction's input and to the raw model), smallest angle and share of triangles
 under 30 degrees, the fandisk crease check (one-sided distance from the crease samples of the
-reduction's input, feature angle 60 degrees, to the output; and from the raw model's). Then the targets of issue 14, each row
-pass/fail.
+reduction's input, feature angle 60 degrees, to the output; and from the raw model's). Then the
+targets of issue 14, each row pass/fail.
 
     $PY scripts/bench_reduction.py [--set quick|full] [--sizes 5000,20000,80000] [--plot]
         [--memory] [--runs 3] [--plugin build/plugin2025/libfilter_irregular.so] [--out out/bench_reduction]

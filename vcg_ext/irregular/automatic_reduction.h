@@ -362,8 +362,8 @@ class AutomaticReduction {
   /// The final relaxation of everything not frozen: global (eq. 5) if asked, kept only if it
   /// does not lower the smallest angle (the global solve equalizes lengths and angles on
   /// average and can squeeze a few triangles next to the remaining irregular vertices), then
-  /// local sweeps, kept only if they keep the budget (with Run's margin) and the smallest angle (above the bound,
-  /// or as it was). Not journaled: the whole-run undo restores the snapshot.
+  /// local sweeps, kept only if they keep the budget (with Run's margin) and the smallest angle
+  /// (above the bound, or as it was). Not journaled: the whole-run undo restores the snapshot.
   /// Returns the final positions' HausdorffPercent when it measured them (the sweeps kept),
   /// -1 otherwise: Run measures only then, as each measurement costs a grid over the mesh.
   double FinalRelax() {
