@@ -5,7 +5,8 @@
 //   usage: bench_reduction [vertices=20000] [option=value ...] [model.off ...]
 // vertices 0: reduce the model as loaded (no remeshing). A model is a corpus name or a path
 // (containing '/').
-// options (ReductionOptions fields): maxTravel, glideTravel, targetsPerPair, maxSweeps,
+// options (ReductionOptions fields; maxTravel sets glideTravel and maxRefusals as the filter
+// does, SetFilterTravel, unless they are given): maxTravel, glideTravel, targetsPerPair, maxSweeps,
 // localRelaxIterations, minAngle, budget (Hausdorff, percent of the diagonal), maxRefusals
 // (maxRefusalsPerRegion; 0: no bound), partialAbsorption (0/1), reuseDeadSlots (0/1),
 // angleRepairRounds, angleRepairSlack, travelReference (travelReferenceVertices),
@@ -95,6 +96,7 @@ int main(int argc, char** argv) {
   ReductionOptions opt;
   std::string saveRemeshed, saveResult, peakFile;
   bool memory = false, loadOnly = false;
+  int maxTravel = opt.maxTravel, glideTravel = -1, maxRefusals = -1;
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
     const size_t eq = a.find('=');
@@ -108,14 +110,14 @@ int main(int argc, char** argv) {
       continue;
     }
     const double v = std::atof(a.c_str() + eq + 1);
-    if (key == "maxTravel") opt.maxTravel = int(v);
-    else if (key == "glideTravel") opt.glideTravel = int(v);
+    if (key == "maxTravel") maxTravel = int(v);
+    else if (key == "glideTravel") glideTravel = int(v);
     else if (key == "targetsPerPair") opt.targetsPerPair = int(v);
     else if (key == "maxSweeps") opt.maxSweeps = int(v);
     else if (key == "localRelaxIterations") opt.localRelaxIterations = int(v);
     else if (key == "minAngle") opt.minAngleDeg = v;
     else if (key == "budget") opt.hausdorffBudgetPercent = v;
-    else if (key == "maxRefusals") opt.maxRefusalsPerRegion = int(v);
+    else if (key == "maxRefusals") maxRefusals = int(v);
     else if (key == "angleRepairRounds") opt.angleRepairRounds = int(v);
     else if (key == "angleRepairSlack") opt.angleRepairSlackDeg = v;
     else if (key == "travelReference") opt.travelReferenceVertices = int(v);
@@ -131,6 +133,10 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
+  // the filter's settings for its travel parameter, then what was given explicitly
+  SetFilterTravel(opt, maxTravel);
+  if (glideTravel >= 0) opt.glideTravel = glideTravel;
+  if (maxRefusals >= 0) opt.maxRefusalsPerRegion = maxRefusals;
   if (models.empty())
     models = {"bunny00.off", "armadillo.off", "fandisk.off", "camel.off", "homer.off", "elephant.off", "knot1.off"};
   std::printf("%-14s %7s %6s %8s %6s %7s %8s %7s %8s %8s %8s %7s %7s\n", "model", "V", "chi", "irr.in", "irr", "irr%",

@@ -124,16 +124,7 @@ FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par
   opt.targetCount = par.Int("targetCount");
   opt.hausdorffBudgetPercent = budget;
   opt.minAngleDeg = par.Float("minAngle");
-  opt.maxTravel = par.Int("maxTravel");
-  opt.glideTravel = 4 * opt.maxTravel;
-  // A longer travel is a request for a more thorough run: the refusals a region may take grow
-  // with it (the options' default, 20, at the default travel 12). bunny00 at 20K vertices:
-  // maxTravel 24 leaves 38 irregular vertices against 62 at 12, at 2.33x the peer's time
-  // against 1.31x (0.9.5, the pymeshlab bench; 0.9.4: 46 against 72); with the bound held
-  // lower a longer travel gives up more regions (0.6.0: 52 against 48 at 12 and 24), which are
-  // retried after every nearby edit. On a mesh above 20K vertices the run scales both travels
-  // (ReductionOptions::travelReferenceVertices), not this bound.
-  opt.maxRefusalsPerRegion = std::max(opt.maxRefusalsPerRegion, opt.maxTravel);
+  irr::SetFilterTravel(opt, par.Int("maxTravel"));  // glides 4x; a longer travel: more refusals per region
   opt.finalRelax = par.Enum("relaxation") == 1 ? irr::RelaxMode::Global : irr::RelaxMode::Local;
   if (par.Float("timeLimit") > 0) opt.timeLimitSeconds = par.Float("timeLimit");  // 0: no limit
   opt.frozen = FrozenFromSelection(m, protect);

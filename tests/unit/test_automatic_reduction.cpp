@@ -733,6 +733,93 @@ TEST(AutomaticReduction, CreasesStaySharp) {
   EXPECT_LT(left[1], left[0]);
 }
 
+// The guard's crease test before relaxation (EditGuard::CutsCrease, used by the transports,
+// the split-and-absorb walks and the local cancellations to refuse an edit without relaxing and
+// judging it): on fandisk remeshed to 6K vertices, the edges at its crease lines (and every eighth
+// edge elsewhere) are flipped in turn.
+// Every flip of a crease edge is flagged; every flagged flip leaves a crease sample farther
+// than the crease budget from the flipped mesh (an independent measure: a projector of the
+// whole flipped mesh); a flagged flip stays flagged after the guard's relaxation (crease
+// vertices never move), which is what makes refusing it before that relaxation give the same
+// verdict; and a rollback gives the mesh back bit for bit (checked at every crease edge and
+// every sixteenth other edge).
+TEST(ReductionParts, CutsCreaseFlagsCreaseCutsAndTheyStayCutAfterRelaxation) {
+  TMesh m;
+  std::unique_ptr<SurfaceProjector> raw;
+  ASSERT_TRUE(RemeshedCorpus(m, "fandisk.off", 6000, &raw)) << "corpus mesh missing (run scripts/setup.sh)";
+  SurfaceProjector input(m);
+  ReductionOptions opt;
+  const std::vector<char> crease = CreaseLineVertices(m, opt.creaseDeg, opt.creaseMinEdges);
+  MeshEditor<TMesh> ed(m);
+  ReductionState<TMesh> state(m, ed, opt);
+  EditGuard<TMesh> guard(m, input, opt, ed, state, &crease);
+  const double budget = opt.creaseBudgetPercent / 100.0 * double(input.Diagonal());
+  const std::vector<vcg::Point3f> samples = CreaseSamples(m, opt.creaseDeg);
+  auto onLine = [&](int v) { return size_t(v) < crease.size() && crease[size_t(v)]; };
+  struct Edge {
+    int x, y, o1, o2;
+    bool creaseEdge;
+  };
+  std::vector<Edge> edges;
+  int elsewhere = 0;
+  const double sharp = std::cos(opt.creaseDeg * M_PI / 180.0);
+  for (auto& f : m.face) {
+    if (f.IsD()) continue;
+    for (int z = 0; z < 3; ++z) {
+      TMesh::FaceType* g = f.FFp(z);
+      if (g == &f || g < &f) continue;
+      const int x = int(vcg::tri::Index(m, f.V(z))), y = int(vcg::tri::Index(m, f.V((z + 1) % 3)));
+      const int o1 = int(vcg::tri::Index(m, f.V((z + 2) % 3))), o2 = int(vcg::tri::Index(m, g->V((f.FFi(z) + 2) % 3)));
+      const bool dihedral =
+          double(vcg::TriangleNormal(f).Normalize().dot(vcg::TriangleNormal(*g).Normalize())) < sharp;
+      // the edges at a crease line, and every eighth edge elsewhere
+      const bool nearLine = onLine(x) || onLine(y) || onLine(o1) || onLine(o2);
+      if (nearLine || ++elsewhere % 8 == 0) edges.push_back({x, y, o1, o2, dihedral && onLine(x) && onLine(y)});
+    }
+  }
+  int flipped = 0, creaseFlips = 0, flagged = 0, stillCut = 0;
+  double minFlaggedPercent = 1e9;
+  for (size_t k = 0; k < edges.size(); ++k) {
+    const Edge& e = edges[k];
+    const bool check = k % 16 == 0 || e.creaseEdge;  // the rollback compared with a snapshot
+    const test::MeshSnapshot snap = check ? test::Snapshot(m) : test::MeshSnapshot();
+    auto cp = ed.Mark();
+    if (!ed.Flip(e.x, e.y).ok) continue;
+    ++flipped;
+    const std::vector<int> touched{e.x, e.y, e.o1, e.o2};
+    const bool cut = guard.CutsCrease(touched);
+    if (e.creaseEdge) {
+      ++creaseFlips;
+      EXPECT_TRUE(cut) << "crease edge " << e.x << "-" << e.y;
+    }
+    if (cut && ++flagged % 4 == 1) {
+      // the nearby crease samples against the whole flipped mesh (every fourth flagged flip:
+      // a projector of the whole mesh each)
+      const vcg::Point3f mid = (vcg::Point3f::Construct(m.vert[size_t(e.x)].P()) +
+                                vcg::Point3f::Construct(m.vert[size_t(e.y)].P())) / 2.f;
+      const float radius = 2.f * vcg::Distance(vcg::Point3f::Construct(m.vert[size_t(e.x)].P()),
+                                                vcg::Point3f::Construct(m.vert[size_t(e.y)].P()));
+      std::vector<vcg::Point3f> near;
+      for (const auto& p : samples)
+        if (vcg::Distance(p, mid) < radius) near.push_back(p);
+      const double percent = FarthestPercent(m, near, double(input.Diagonal()));
+      minFlaggedPercent = std::min(minFlaggedPercent, percent);
+      EXPECT_GT(percent / 100.0 * double(input.Diagonal()), budget) << "flip " << e.x << "-" << e.y;
+      guard.RelaxAround(touched);
+      stillCut += guard.CutsCrease(touched);
+    }
+    ed.RollbackTo(cp);
+    if (check) ASSERT_TRUE(test::Snapshot(m) == snap) << "flip " << e.x << "-" << e.y;
+  }
+  std::printf("fandisk at 6K: %zu interior edges tried, %d flipped, %d of them crease edges; %d flagged (closest %.4f%% "
+              "of the diagonal, budget %.4f%%), %d still cut after relaxation\n",
+              edges.size(), flipped, creaseFlips, flagged, minFlaggedPercent, opt.creaseBudgetPercent, stillCut);
+  EXPECT_GT(creaseFlips, 200);
+  EXPECT_GE(flagged, creaseFlips);
+  EXPECT_LT(flagged, flipped / 2);  // flips next to a crease line but not across it are not flagged
+  EXPECT_EQ(stillCut, (flagged + 3) / 4);
+}
+
 // Crease vertices are never relaxed, so an edit next to a crease cannot even out the triangles
 // it squeezes there: those triangles may go creaseAngleSlackDeg under the minimum angle. The
 // slack must pay (fewer irregular vertices left) without giving up the creases or the angles

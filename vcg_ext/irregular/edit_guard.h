@@ -179,7 +179,25 @@ class EditGuard {
   /// near the border still finds its closest edited face). (b) is what catches a crease or a
   /// tip cut off by an edit. Only "above the budget or not" matters, so (a) stops at the
   /// first excess. *crease: the largest deviation of (b)'s samples on creases.
-  double DeviationAround(const std::vector<int>& seeds, double* crease) {
+  double DeviationAround(const std::vector<int>& seeds, double* crease) { return Deviation(seeds, crease, false); }
+
+  /// Does the edit around the seeds leave a sample of the input's crease lines farther than
+  /// the crease budget from the edited faces ((b) of DeviationAround, crease samples only)?
+  /// For an edit not yet relaxed: a cut crease stays cut, as relaxation never moves crease
+  /// vertices and projects the others back onto the input on their own side. fandisk at 20K:
+  /// of 3916 transport routes this flagged before their relaxation, 6 passed the guard after
+  /// it (1792 were refused for the crease budget, 2062 for angles, 56 folded); of the 4784 it
+  /// did not flag, 19 were refused for the distance. Cheap: no query at all when no crease
+  /// sample lies near the edit.
+  bool CutsCrease(const std::vector<int>& seeds) {
+    double crease = 0;
+    Deviation(seeds, &crease, true);
+    return crease > creaseBudget_;
+  }
+
+ private:
+  /// DeviationAround; creaseOnly: (b) only, over the crease samples only (CutsCrease).
+  double Deviation(const std::vector<int>& seeds, double* crease, bool creaseOnly) {
     const std::vector<int> live = LiveOf(seeds);
     // the local relaxation after an edit moves its 2-ring, which changes the faces up to there
     const std::vector<int> region = KRing(m_, live, 2);
@@ -211,7 +229,8 @@ class EditGuard {
       mx = std::max(mx, double(d));
       return mx <= budget_;
     };
-    for (const FaceType* f : changed) {
+    for (size_t k = 0; k < changed.size() && !creaseOnly; ++k) {
+      const FaceType* f = changed[k];
       if (!probe(CoordType((f->cP(0) + f->cP(1) + f->cP(2)) / 3))) return mx;
       for (int z = 0; z < 3; ++z) {
         const FaceType* g = f->cFFp(z);
@@ -238,12 +257,14 @@ class EditGuard {
         faceBoxes.push_back(b);
         all.Add(b);
       }
-      for (int i : originalSamples_.InBox(all))
+      for (int i : originalSamples_.InBox(all)) {
+        if (creaseOnly && originalSamples_.Tag(i) == 0) continue;
         for (const vcg::Box3<float>& b : faceBoxes)
           if (b.IsIn(originalSamples_.Point(i))) {
             near.push_back(i);
             break;
           }
+      }
     }
     if (near.empty()) return mx;
     // The faces are hashed on a grid so each sample is compared with the faces around it
@@ -364,7 +385,6 @@ class EditGuard {
     return mx;
   }
 
- private:
   /// The seeds an edit has not deleted (a collapse removes vertices that stay in `touched`).
   std::vector<int> LiveOf(const std::vector<int>& seeds) const {
     std::vector<int> live;

@@ -117,6 +117,11 @@ class PairTransport {
         AtomicOutcome gen = ops_.MoveWithPairGeneration(cur, k);
         if (!gen) continue;
         const std::vector<int> changed = state_.Record(gen, touched);
+        if (guard_.CutsCrease(changed)) {
+          touched.resize(mark);
+          ed_.RollbackTo(cp);
+          continue;
+        }
         unjudged.insert(unjudged.end(), changed.begin(), changed.end());
         guard_.RelaxAround(changed);
         const int moved = gen.irregular[0];
@@ -257,6 +262,14 @@ class PairTransport {
     }
     if (reach < 0) {
       g.Undo();
+      return false;
+    }
+    // A route that cut a crease line stays refused whatever the relaxation does (CutsCrease):
+    // refused before it, it costs no relaxation and no judging (fandisk at 20K: 3910 of 3916
+    // such routes were refused after them, and they took a third of its reduction's time).
+    if (guard_.CutsCrease(touched)) {
+      g.Refuse(GuardVerdict::Hausdorff);
+      ++rep.undone;
       return false;
     }
     // The probe's route, relaxed as a whole: usually as good as the same route relaxed step
