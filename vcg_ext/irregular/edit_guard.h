@@ -559,6 +559,16 @@ class GuardedEdit {
                        : v == GuardVerdict::Boundary ? Refusal::Boundary
                                                      : Refusal::Hausdorff);
   }
+  /// Refuses the edit, before any relaxation, if it cuts a crease line (EditGuard::CutsCrease):
+  /// undone, recorded as a Hausdorff refusal and counted in rep.undone. Such an edit nearly
+  /// always fails the guard after relaxation too (fandisk at 20K: 3910 of 3916 routes), and
+  /// refusing it first saves its relaxation and judging (a third of fandisk's reduction).
+  bool RefuseIfCutsCrease(const std::vector<int>& touched) {
+    if (!g_.CutsCrease(touched)) return false;
+    Refuse(GuardVerdict::Hausdorff);
+    ++rep_.undone;
+    return true;
+  }
   /// The edit is kept: stamps, running count, and (outermost edit) the journal's commit.
   void Keep(const std::vector<int>& touched) { g_.state().Kept(touched); }
   void Undo() { g_.ed().RollbackTo(cp_); }

@@ -55,12 +55,7 @@ class LocalCancellation {
         "cancellation", false);
     if (!o) return false;
     std::vector<int> touched = state_.Changed(o);
-    // a cut crease stays cut: refused before the relaxation (EditGuard::CutsCrease)
-    if (guard_.CutsCrease(touched)) {
-      g.Refuse(GuardVerdict::Hausdorff);
-      ++rep.undone;
-      return false;
-    }
+    if (g.RefuseIfCutsCrease(touched)) return false;
     guard_.RelaxAround(touched);
     if (!g.Accept(touched)) {
       ++rep.undone;
