@@ -2,7 +2,7 @@
 // meshes, without MeshLab: each model is remeshed isotropically to about N vertices (vcglib's
 // IsotropicRemeshing, the code behind MeshLab's "Isotropic Explicit Remeshing"), then reduced
 // with the default options. Prints one row per model.
-//   usage: bench_reduction [vertices=20000] [option=value ...] [model.off ...]
+//   usage: bench_reduction [vertices=20000] [option=value ...] [model.off|model.ply ...]
 // vertices 0: reduce the model as loaded (no remeshing). A model is a corpus name or a path
 // (containing '/').
 // options (ReductionOptions fields; maxTravel sets glideTravel and maxRefusals as the filter
@@ -10,7 +10,7 @@
 // localRelaxIterations, minAngle, budget (Hausdorff, percent of the diagonal), maxRefusals
 // (maxRefusalsPerRegion; 0: no bound), partialAbsorption (0/1), reuseDeadSlots (0/1),
 // angleRepairRounds, angleRepairSlack, travelReference (travelReferenceVertices),
-// maxTravelScale, creaseDeg.
+// maxTravelScale, creaseDeg, anglePolish (anglePolishDeg; 0: none), anglePolishRounds.
 // files: saveRemeshed=<path> writes the remeshed input (OFF), saveResult=<path> the result, for
 // profiling the reduction alone on a fixed input and for comparing two runs byte by byte (with
 // several models, the model's name is appended).
@@ -35,6 +35,7 @@
 #include <vcg/complex/algorithms/stat.h>
 #include <wrap/io_trimesh/export_off.h>
 #include <wrap/io_trimesh/import_off.h>
+#include <wrap/io_trimesh/import_ply.h>
 
 #include <vcg_ext/irregular/automatic_reduction.h>
 #include <vcg_ext/irregular/quality.h>
@@ -47,8 +48,13 @@ using test::TMesh;
 
 namespace {
 bool LoadPath(TMesh& m, const std::string& file) {
+  // A PLY (such as the pymeshlab benchmark's saved peer output) loads bit-exact, so a native run
+  // reproduces the filter's; OFF text rounds the coordinates.
   int mask = 0;
-  if (vcg::tri::io::ImporterOFF<TMesh>::Open(m, file.c_str(), mask) != 0) return false;
+  const bool ply = file.size() > 4 && file.compare(file.size() - 4, 4, ".ply") == 0;
+  if (ply ? vcg::tri::io::ImporterPLY<TMesh>::Open(m, file.c_str(), mask) != 0
+          : vcg::tri::io::ImporterOFF<TMesh>::Open(m, file.c_str(), mask) != 0)
+    return false;
   vcg::tri::Clean<TMesh>::RemoveUnreferencedVertex(m);
   vcg::tri::Allocator<TMesh>::CompactEveryVector(m);
   test::UpdateTopology(m);
@@ -125,6 +131,8 @@ int main(int argc, char** argv) {
     else if (key == "partialAbsorption") opt.partialAbsorption = v != 0;
     else if (key == "reuseDeadSlots") opt.reuseDeadSlots = v != 0;
     else if (key == "creaseDeg") opt.creaseDeg = v;
+    else if (key == "anglePolish") opt.anglePolishDeg = v;
+    else if (key == "anglePolishRounds") opt.anglePolishRounds = int(v);
     else if (key == "timeLimit") opt.timeLimitSeconds = v > 0 ? v : opt.timeLimitSeconds;
     else if (key == "memory") memory = v != 0;
     else if (key == "loadOnly") loadOnly = v != 0;
@@ -194,8 +202,9 @@ int main(int argc, char** argv) {
                 Summarize(m).eulerCharacteristic, r.irregularBefore, r.irregularAfter, 100.0 * r.irregularAfter / m.vn,
                 HausdorffPercent(m, input), s.minAngleDeg, 100 * s.shareBelow30,
                 std::chrono::duration<double>(t1 - t0).count(), std::chrono::duration<double>(t2 - t1).count(), r.budgetRetries, int(r.gaveUp.size()), r.gaveUpVertices, r.allUndone ? " (all undone)" : "");
-    std::printf("  %s; travel %d; undone %d (angle %d, Hausdorff %d, frozen %d, boundary %d)\n", r.leftovers.Summary().c_str(), r.travel,
-                r.undone, r.undoneAngle, r.undoneHausdorff, r.undoneFrozen, r.undoneBoundary);
+    std::printf("  %s; travel %d; undone %d (angle %d, Hausdorff %d, frozen %d, boundary %d); angle polish %d of %d%s\n",
+                r.leftovers.Summary().c_str(), r.travel, r.undone, r.undoneAngle, r.undoneHausdorff, r.undoneFrozen,
+                r.undoneBoundary, r.anglePolished, r.anglePolishBelow, r.finalSweepsUndone ? "; final sweeps undone" : "");
     std::fflush(stdout);
   }
   const double peak = StatusMiB("VmHWM");

@@ -172,6 +172,8 @@ FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par
     ctx.Logf("%s", rep.gaveUp[i].Describe().c_str());
   if (rep.gaveUp.size() > kMaxGaveUpLines)
     ctx.Logf("... and %d more regions given up", int(rep.gaveUp.size() - kMaxGaveUpLines));
+  ctx.Logf("Angle polish: %d of the %d triangles with an angle under %.0f degrees relaxed locally within the budget",
+           rep.anglePolished, rep.anglePolishBelow, opt.anglePolishDeg);
   if (rep.timeLimitReached) ctx.Warnf("Time limit reached: editing stopped early");
   if (rep.globalRelaxUndone) ctx.Logf("The final global relaxation lowered the smallest angle and was undone");
   if (rep.finalSweepsUndone) ctx.Logf("The final local relaxation sweeps overshot the Hausdorff budget or lowered the smallest angle under "
@@ -214,6 +216,8 @@ FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par
   out.SetInt("split_absorptions", rep.splitAbsorptions);
   out.SetInt("partial_absorptions", rep.partialAbsorptions);
   out.SetInt("angle_repairs", rep.angleRepairs);
+  out.SetInt("angle_polished", rep.anglePolished);
+  out.SetInt("angle_polish_below", rep.anglePolishBelow);
   out.SetInt("travel", rep.travel);
   out.SetInt("undone", rep.undone);
   out.SetInt("undone_angle", rep.undoneAngle);

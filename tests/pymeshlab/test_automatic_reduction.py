@@ -78,6 +78,7 @@ def test_bunny_example_meets_the_paper_and_beats_the_peer():
     assert 0 < out["remesh_hausdorff_percent"] < exact + 1e-9 or out["remesh_hausdorff_percent"] < 0.5
     assert out["type_splits"] + out["local_cancellations"] + out["transports"] + out["glides"] > 0
     assert out["split_absorptions"] > 0 and out["partial_absorptions"] >= 0
+    assert 0 <= out["angle_polished"] <= out["angle_polish_below"]
     assert 0 < out["reduction_seconds"] <= out["seconds"]
     # the oracle's distance against MeshLab's own sampled one: both sample the surfaces (neither
     # is the exact maximum), so they agree within a few percent, and MeshLab's keeps the budget
@@ -99,6 +100,32 @@ def test_bunny_example_meets_the_paper_and_beats_the_peer():
     tp = tri(peer)
     assert abs(len(tp.vertices) - out["remeshed_vertices"]) < 0.2 * len(tp.vertices)
     assert fo.irregular_mask(tp).sum() > 40 * irregular.sum()
+
+
+def test_cow_keeps_its_angles_after_the_angle_polish():
+    """The cow as the benchmark remeshes it (MeshLab's isotropic remeshing to about 20K vertices,
+    its pinned parameters; the one vertex where that joins two fans repaired first): issue 14
+    bounds the share of triangles under 30 degrees at 1%. Transports leave clusters of sheared
+    triangles there; the final sweeps overshoot the budget on the cow and are dropped, so without
+    the angle polish 1.21% stayed (0.9.11). Measured with it: 0.76%, 57 of 449 relaxed."""
+    length = 0.007596064858557005  # the benchmark's edge length for the cow at 20K
+    ms = load("cow.off")
+    t0 = tri(ms)
+    ms.meshing_isotropic_explicit_remeshing(
+        targetlen=pymeshlab.PureValue(length), maxsurfdist=pymeshlab.PureValue(length / 10), iterations=10,
+        adaptive=False, selectedonly=False, featuredeg=30.0, checksurfdist=False, splitflag=True,
+        collapseflag=True, swapflag=True, smoothflag=True, reprojectflag=True)
+    if ms.get_topological_measures()["non_two_manifold_vertices"]:
+        ms.meshing_repair_non_manifold_vertices(vertdispratio=0.05)
+    before = fo.shape_measures(tri(ms))["share_below_30"]
+    out = reduce(ms)
+    t1 = tri(ms)
+    after = fo.shape_measures(t1)["share_below_30"]
+    assert after <= 0.01 and after < before, (before, after)
+    assert out["percent_below_30_after"] == pytest.approx(100 * after, abs=1e-9)
+    assert 20 <= out["angle_polished"] <= out["angle_polish_below"], out["angle_polished"]
+    assert out["hausdorff_percent"] <= 0.5
+    assert fo.irregular_mask(t1).sum() <= 0.03 * len(t1.vertices)
 
 
 def test_remeshed_knot_keeps_the_budget():

@@ -964,3 +964,81 @@ TEST(AutomaticReduction, FinalSweepsBetweenTheMarginAndTheBudgetAreUndoneNotRetr
   Result inv = CheckInvariants(m);
   EXPECT_TRUE(inv.ok) << inv.reason;
 }
+
+// The angle polish (angle_polish.h) on a regular torus with six vertices shifted along the tube
+// by 0.55 of a cell: the triangles they shear (under 30 degrees) are relaxed away; only the
+// vertices within three rings of a shifted one move, each shifted vertex ends near its lattice
+// place, connectivity is untouched; with a budget no relaxation can keep, nothing changes.
+TEST(ReductionParts, AnglePolishRelaxesShearedTrianglesAwayAndOnlyThere) {
+  const int n = 72, k = 24;
+  auto place = [&](double i, double j) {
+    const double a = 2 * M_PI * i / n, b = 2 * M_PI * j / k;
+    return TMesh::CoordType(TMesh::ScalarType((3 + std::cos(b)) * std::cos(a)),
+                            TMesh::ScalarType((3 + std::cos(b)) * std::sin(a)), TMesh::ScalarType(std::sin(b)));
+  };
+  const std::vector<std::pair<int, int>> shifted{{4, 3}, {16, 9}, {28, 15}, {40, 21}, {52, 5}, {64, 12}};
+  auto build = [&](TMesh& m) {
+    test::RegularTorus(m, n, k, 3.f, 1.f);
+    for (auto& s : shifted) m.vert[size_t(s.first * k + s.second)].P() = place(s.first + 0.55, s.second);
+    test::UpdateTopology(m);
+  };
+  auto below30 = [](TMesh& m) {
+    int c = 0;
+    for (auto& f : m.face) c += !f.IsD() && EditGuard<TMesh>::MinAngle(&f) < 30;
+    return c;
+  };
+  {
+    TMesh m;
+    build(m);
+    const int before = below30(m);
+    ASSERT_GE(before, 12);  // each shift shears at least two triangles
+    const std::vector<std::array<int, 3>> faces = test::CanonicalFaces(m);
+    std::vector<TMesh::CoordType> was;
+    for (auto& v : m.vert) was.push_back(v.P());
+    SurfaceProjector input(m);
+    ReductionOptions opt;
+    Parts p(m, input, opt);
+    p.state.StartCount();
+    ReductionReport rep;
+    const AnglePolishReport ap = PolishAngles(m, p.guard, rep, 30, 1);
+    EXPECT_EQ(ap.below, before);
+    EXPECT_GE(ap.kept, int(shifted.size()));
+    EXPECT_EQ(below30(m), 0);
+    EXPECT_EQ(rep.undone + rep.undoneAngle + rep.undoneHausdorff, 0);  // not the reduction's refusals
+    EXPECT_TRUE(test::CanonicalFaces(m) == faces);
+    EXPECT_TRUE(test::AdjacencyEqualsRebuild(m));
+    ASSERT_TRUE(CheckInvariants(m).ok);
+    std::vector<int> seeds;
+    for (auto& s : shifted) seeds.push_back(s.first * k + s.second);
+    const std::vector<int> near = KRing(m, seeds, 3);
+    const std::set<int> nearSet(near.begin(), near.end());
+    int moved = 0;
+    for (size_t i = 0; i < m.vert.size(); ++i) {
+      const bool same = m.vert[i].P() == was[i];
+      if (!nearSet.count(int(i))) EXPECT_TRUE(same) << "vertex " << i << " moved, far from every shifted vertex";
+      moved += !same;
+    }
+    EXPECT_GT(moved, int(shifted.size()));
+    const double cell = double(vcg::Distance(place(0, 0), place(1, 0)));
+    for (auto& s : shifted) {
+      const double off = double(vcg::Distance(m.vert[size_t(s.first * k + s.second)].P(), place(s.first, s.second)));
+      EXPECT_LT(off, 0.25 * cell) << "shifted vertex (" << s.first << ", " << s.second << ") ended " << off / cell
+                                  << " cells from its place (was 0.55)";
+    }
+  }
+  {
+    TMesh m;
+    build(m);
+    SurfaceProjector input(m);
+    ReductionOptions opt;
+    opt.hausdorffBudgetPercent = 1e-7;  // no relaxation on the curved torus stays this close
+    Parts p(m, input, opt);
+    p.state.StartCount();
+    const test::MeshSnapshot snap = test::Snapshot(m);
+    ReductionReport rep;
+    const AnglePolishReport ap = PolishAngles(m, p.guard, rep, 30, 2);
+    EXPECT_EQ(ap.kept, 0);
+    EXPECT_EQ(ap.refused, ap.below);
+    EXPECT_TRUE(test::Snapshot(m) == snap);
+  }
+}

@@ -20,11 +20,20 @@ namespace test {
 class TVertex;
 class TFace;
 struct TUsedTypes : public vcg::UsedTypes<vcg::Use<TVertex>::AsVertexType, vcg::Use<TFace>::AsFaceType> {};
-class TVertex : public vcg::Vertex<TUsedTypes, vcg::vertex::Coord3f, vcg::vertex::Normal3f, vcg::vertex::VFAdj,
-                                   vcg::vertex::Color4b, vcg::vertex::Qualityf, vcg::vertex::BitFlags,
-                                   vcg::vertex::Mark> {};
+// Single precision, as MeshLab 2020.09's CMeshO; FI_TEST_MESH_DOUBLE gives double, as MeshLab
+// 2025.07's (pymeshlab's wheel is built with MESHLAB_SCALAR=double), so that a native benchmark
+// reproduces the filter's run bit for bit.
+#ifdef FI_TEST_MESH_DOUBLE
+#define FI_TEST_SCALAR(component) component##d
+#else
+#define FI_TEST_SCALAR(component) component##f
+#endif
+class TVertex : public vcg::Vertex<TUsedTypes, vcg::vertex::FI_TEST_SCALAR(Coord3), vcg::vertex::FI_TEST_SCALAR(Normal3),
+                                   vcg::vertex::VFAdj, vcg::vertex::Color4b, vcg::vertex::FI_TEST_SCALAR(Quality),
+                                   vcg::vertex::BitFlags, vcg::vertex::Mark> {};
 class TFace : public vcg::Face<TUsedTypes, vcg::face::VertexRef, vcg::face::FFAdj, vcg::face::VFAdj,
-                               vcg::face::Normal3f, vcg::face::BitFlags, vcg::face::Mark> {};
+                               vcg::face::FI_TEST_SCALAR(Normal3), vcg::face::BitFlags, vcg::face::Mark> {};
+#undef FI_TEST_SCALAR
 class TMesh : public vcg::tri::TriMesh<std::vector<TVertex>, std::vector<TFace>> {};
 
 inline void UpdateTopology(TMesh& m) {
@@ -58,8 +67,8 @@ inline void RegularTorus(TMesh& m, int n, int k, float R = 3.f, float r = 1.f) {
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < k; ++j) {
       float a = 2 * float(M_PI) * i / n, b = 2 * float(M_PI) * j / k;
-      m.vert[i * k + j].P() = vcg::Point3f((R + r * std::cos(b)) * std::cos(a), (R + r * std::cos(b)) * std::sin(a),
-                                           r * std::sin(b));
+      m.vert[i * k + j].P() = TMesh::CoordType((R + r * std::cos(b)) * std::cos(a), (R + r * std::cos(b)) * std::sin(a),
+                                               r * std::sin(b));
     }
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < k; ++j) {
@@ -88,7 +97,7 @@ inline void HexPatch(TMesh& m, int radius) {
   vcg::tri::Allocator<TMesh>::AddVertices(m, cells.size());
   for (size_t i = 0; i < cells.size(); ++i) {
     float q = float(cells[i].first), r = float(cells[i].second);
-    m.vert[i].P() = vcg::Point3f(q + 0.5f * r, r * std::sqrt(3.f) / 2.f, 0.f);
+    m.vert[i].P() = TMesh::CoordType(q + 0.5f * r, r * std::sqrt(3.f) / 2.f, 0.f);
   }
   for (auto c : cells) {
     int a = idx(c.first, c.second), b = idx(c.first + 1, c.second), d = idx(c.first, c.second + 1),

@@ -33,6 +33,7 @@
 #include <memory>
 #include <vector>
 
+#include "angle_polish.h"
 #include "composite_ops.h"
 #include "edit_guard.h"
 #include "local_cancellation.h"
@@ -191,6 +192,11 @@ class AutomaticReduction {
     if (opt_.progress && !opt_.progress(90, "Relaxing")) {
       rep.interrupted = true;
       return;
+    }
+    if (opt_.anglePolishDeg > 0) {
+      const AnglePolishReport ap = PolishAngles(m_, guard_, rep, opt_.anglePolishDeg, opt_.anglePolishRounds);
+      rep.anglePolished = ap.kept;
+      rep.anglePolishBelow = ap.below;
     }
     // the sweeps' stamps and the strategies' per-vertex scratch are not read past this point:
     // give them back before the final relaxation allocates its arrays and the measurement its
