@@ -131,15 +131,20 @@ class EditGuard {
   /// Smallest angle (degrees) of the faces around the 2-ring of the seeds. With atCrease, the
   /// faces with a vertex on a crease line count there instead (*atCrease: their smallest angle,
   /// left as it was when there is none).
+  /// The largest corner cosine is tracked and turned into an angle once per side: acos is
+  /// decreasing and correctly rounded, so this is the smallest of the faces' MinAngle, to the
+  /// bit, at one acos per call instead of one per face visit (each face is seen from its three
+  /// vertices).
   double MinAngleAround(const std::vector<int>& seeds, double* atCrease = nullptr) {
     const std::vector<int> live = LiveOf(seeds);
-    double mn = 180;
+    double maxCos = -2, maxCosCrease = -2;  // -2: no face seen
     for (int v : KRing(m_, live, 2))
       for (auto& c : ed_.Star(v).corners) {
-        double& into = atCrease && OnCreaseLine(c.f) ? *atCrease : mn;
-        into = std::min(into, MinAngle(c.f));
+        double& into = atCrease && OnCreaseLine(c.f) ? maxCosCrease : maxCos;
+        into = std::max(into, relax_detail::MaxCornerCos(c.f));
       }
-    return mn;
+    if (atCrease && maxCosCrease > -2) *atCrease = std::min(*atCrease, AngleOfCos(maxCosCrease));
+    return maxCos > -2 ? std::min(180.0, AngleOfCos(maxCos)) : 180;
   }
 
   /// The vertices of the faces around the 2-ring of the seeds with an angle under `deg`.
@@ -168,9 +173,9 @@ class EditGuard {
 
   /// Smallest angle of f in degrees (0 with a zero-length edge): one acos per face
   /// (relaxation.h relax_detail::MaxCornerCos).
-  static double MinAngle(const FaceType* f) {
-    return std::acos(std::max(-1.0, std::min(1.0, relax_detail::MaxCornerCos(f)))) * 180 / M_PI;
-  }
+  static double MinAngle(const FaceType* f) { return AngleOfCos(relax_detail::MaxCornerCos(f)); }
+  /// The angle in degrees whose cosine is c (clamped to [-1, 1]).
+  static double AngleOfCos(double c) { return std::acos(std::max(-1.0, std::min(1.0, c))) * 180 / M_PI; }
 
   /// Local symmetric Hausdorff distance between the edited faces around the seeds and the
   /// input surface: (a) the faces' edge midpoints and centroids to the input (their vertices
