@@ -82,13 +82,17 @@ class EditGuard {
     // moved curvature into a regular stretch of boundary without cancelling any there.
     if (state_.BoundaryIrregular() + state_.BoundaryDelta(touched) > state_.BoundaryLimit())
       return GuardVerdict::Boundary;
+    // the angle check and the distance check look at the same region and faces: gathered once
+    std::vector<int>& region = region_;
+    std::vector<const FaceType*>& changed = changed_;
+    GatherChanged(touched, region, changed);
     double atCrease = 180;
-    const double elsewhere = MinAngleAround(touched, &atCrease);
+    const double elsewhere = MinAngleOf(changed, &atCrease);
     if (elsewhere < std::min(opt_.minAngleDeg, angleBefore) ||
         atCrease < std::min(opt_.minAngleDeg - opt_.creaseAngleSlackDeg, angleBefore))
       return GuardVerdict::Angle;
     double crease = 0;
-    if (DeviationAround(touched, &crease) > budget_ || crease > creaseBudget_) return GuardVerdict::Hausdorff;
+    if (Deviation(region, changed, &crease, false) > budget_ || crease > creaseBudget_) return GuardVerdict::Hausdorff;
     return GuardVerdict::Kept;
   }
 
@@ -131,20 +135,12 @@ class EditGuard {
   /// Smallest angle (degrees) of the faces around the 2-ring of the seeds. With atCrease, the
   /// faces with a vertex on a crease line count there instead (*atCrease: their smallest angle,
   /// left as it was when there is none).
-  /// The largest corner cosine is tracked and turned into an angle once per side: acos is
-  /// decreasing and correctly rounded, so this is the smallest of the faces' MinAngle, to the
-  /// bit, at one acos per call instead of one per face visit (each face is seen from its three
-  /// vertices).
+  /// Each face once (GatherChanged), and the largest corner cosine turned into an angle once
+  /// per side: acos is decreasing and correctly rounded, so this is the smallest of the faces'
+  /// MinAngle, to the bit, at one acos per call instead of one per face and star it lies in.
   double MinAngleAround(const std::vector<int>& seeds, double* atCrease = nullptr) {
-    const std::vector<int> live = LiveOf(seeds);
-    double maxCos = -2, maxCosCrease = -2;  // -2: no face seen
-    for (int v : KRing(m_, live, 2))
-      for (auto& c : ed_.Star(v).corners) {
-        double& into = atCrease && OnCreaseLine(c.f) ? maxCosCrease : maxCos;
-        into = std::max(into, relax_detail::MaxCornerCos(c.f));
-      }
-    if (atCrease && maxCosCrease > -2) *atCrease = std::min(*atCrease, AngleOfCos(maxCosCrease));
-    return maxCos > -2 ? std::min(180.0, AngleOfCos(maxCos)) : 180;
+    GatherChanged(seeds, region_, changed_);
+    return MinAngleOf(changed_, atCrease);
   }
 
   /// The vertices of the faces around the 2-ring of the seeds with an angle under `deg`.
@@ -184,7 +180,10 @@ class EditGuard {
   /// near the border still finds its closest edited face). (b) is what catches a crease or a
   /// tip cut off by an edit. Only "above the budget or not" matters, so (a) stops at the
   /// first excess. *crease: the largest deviation of (b)'s samples on creases.
-  double DeviationAround(const std::vector<int>& seeds, double* crease) { return Deviation(seeds, crease, false); }
+  double DeviationAround(const std::vector<int>& seeds, double* crease) {
+    GatherChanged(seeds, region_, changed_);
+    return Deviation(region_, changed_, crease, false);
+  }
 
   /// Does the edit around the seeds leave a sample of the input's crease lines farther than
   /// the crease budget from the edited faces ((b) of DeviationAround, crease samples only)?
@@ -196,22 +195,42 @@ class EditGuard {
   /// sample lies near the edit.
   bool CutsCrease(const std::vector<int>& seeds) {
     double crease = 0;
-    Deviation(seeds, &crease, true);
+    GatherChanged(seeds, region_, changed_);
+    Deviation(region_, changed_, &crease, true);
     return crease > creaseBudget_;
   }
 
  private:
-  /// DeviationAround; creaseOnly: (b) only, over the crease samples only (CutsCrease).
-  double Deviation(const std::vector<int>& seeds, double* crease, bool creaseOnly) {
-    const std::vector<int> live = LiveOf(seeds);
-    // the local relaxation after an edit moves its 2-ring, which changes the faces up to there
-    const std::vector<int> region = KRing(m_, live, 2);
-    std::vector<const FaceType*> changed, all;
+  /// The part of the mesh an edit around the seeds changes: the local relaxation after an edit
+  /// moves its 2-ring (region: the 2-ring of the live seeds), which changes the faces around it
+  /// (changed: each once, in the order the stars give them; faceSeen_ holds them).
+  void GatherChanged(const std::vector<int>& seeds, std::vector<int>& region, std::vector<const FaceType*>& changed) {
+    region = KRing(m_, LiveOf(seeds), 2);
+    changed.clear();
     faceSeen_.Begin(m_.face.size());
-    auto seenInsert = [&](const FaceType* f) { return faceSeen_.Insert(size_t(f - &m_.face[0])); };
     for (int v : region)
       for (auto& c : ed_.Star(v).corners)
-        if (seenInsert(c.f)) changed.push_back(c.f);
+        if (faceSeen_.Insert(size_t(c.f - &m_.face[0]))) changed.push_back(c.f);
+  }
+
+  /// Smallest angle (degrees) of the faces; with atCrease, those with a vertex on a crease
+  /// line count there instead (see MinAngleAround).
+  double MinAngleOf(const std::vector<const FaceType*>& faces, double* atCrease) const {
+    double maxCos = -2, maxCosCrease = -2;  // -2: no face seen
+    for (const FaceType* f : faces) {
+      double& into = atCrease && OnCreaseLine(f) ? maxCosCrease : maxCos;
+      into = std::max(into, relax_detail::MaxCornerCos(f));
+    }
+    if (atCrease && maxCosCrease > -2) *atCrease = std::min(*atCrease, AngleOfCos(maxCosCrease));
+    return maxCos > -2 ? std::min(180.0, AngleOfCos(maxCos)) : 180;
+  }
+
+  /// DeviationAround over what GatherChanged gave (faceSeen_ as it left it); creaseOnly: (b)
+  /// only, over the crease samples only (CutsCrease).
+  double Deviation(const std::vector<int>& region, const std::vector<const FaceType*>& changed, double* crease,
+                   bool creaseOnly) {
+    std::vector<const FaceType*> all;
+    auto seenInsert = [&](const FaceType* f) { return faceSeen_.Insert(size_t(f - &m_.face[0])); };
     // (a) each changed face's centroid and edge midpoints (an edge shared by two changed faces
     // once) against the input; a query looks no farther than just past the budget
     const float reach = float(1.01 * budget_) + 1e-12f;
@@ -508,7 +527,9 @@ class EditGuard {
   double creaseBudget_ = 0;     ///< per-edit budget of the crease samples (absolute)
   double samplesPerEdge_ = 0;   ///< input samples per edge length besides sharp edges, raised by retries
   SampleGrid originalSamples_;  ///< the input's samples, for DeviationAround()
-  StampSet faceSeen_;           ///< DeviationAround's set of the faces it gathered
+  StampSet faceSeen_;           ///< GatherChanged's set of the faces it gathered (and Deviation's after it)
+  std::vector<int> region_;     ///< GatherChanged's region, reused from call to call
+  std::vector<const FaceType*> changed_;  ///< ... and its faces
   std::vector<std::pair<uint64_t, int>> faceCells_;  ///< DeviationAround's faces by grid cell
   std::vector<vcg::Point3f> changedNormals_;          ///< ... and its changed faces' normals
 };
