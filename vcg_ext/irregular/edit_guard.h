@@ -143,19 +143,28 @@ class EditGuard {
     return MinAngleOf(changed_, atCrease);
   }
 
-  /// The vertices of the faces around the 2-ring of the seeds with an angle under `deg`.
-  std::vector<int> SharpCornersAround(const std::vector<int>& seeds, double deg) {
-    const std::vector<int> live = LiveOf(seeds);
-    std::vector<int> out;
+  /// MinAngleAround(seeds) (no crease split), and in *sharp the vertices of the faces around
+  /// the 2-ring of the seeds with an angle under `deg` (sorted, each once): one gather of the
+  /// region for both, as the angle repair rounds of a refused route need both.
+  double MinAngleAndSharpCorners(const std::vector<int>& seeds, double deg, std::vector<int>* sharp) {
+    GatherChanged(seeds, region_, changed_);
+    sharp->clear();
     const double c = std::cos(deg * M_PI / 180);
-    for (int v : KRing(m_, live, 2))
-      for (auto& cr : ed_.Star(v).corners)
-        if (relax_detail::MaxCornerCos(cr.f) > c)
-          for (int z = 0; z < 3; ++z) out.push_back(ed_.Index(cr.f->V(z)));
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
-    return out;
+    double maxCos = -2;
+    for (const FaceType* f : changed_) {
+      const double fc = relax_detail::MaxCornerCos(f);
+      maxCos = std::max(maxCos, fc);
+      if (fc > c)
+        for (int z = 0; z < 3; ++z) sharp->push_back(ed_.Index(f->cV(z)));
+    }
+    std::sort(sharp->begin(), sharp->end());
+    sharp->erase(std::unique(sharp->begin(), sharp->end()), sharp->end());
+    return maxCos > -2 ? std::min(180.0, AngleOfCos(maxCos)) : 180;
   }
+
+  /// MinAngleAround(touched, atCrease) right after Judge(touched) passed it, with nothing
+  /// edited since: the faces that verdict gathered, without gathering them again.
+  double MinAngleOfJudged(double* atCrease) const { return MinAngleOf(changed_, atCrease); }
 
   /// Has f a vertex on one of the input's crease lines (vertices created since are not)?
   bool OnCreaseLine(const FaceType* f) const {

@@ -304,14 +304,16 @@ class PairTransport {
   /// slack. Returns the last verdict (Angle if no round was tried).
   GuardVerdict RepairAngles(GuardedEdit<MeshType>& g, std::vector<int>& touched) {
     GuardVerdict verdict = GuardVerdict::Angle;
+    std::vector<int> sharp;
     for (int r = 0; r < opt_.angleRepairRounds && verdict == GuardVerdict::Angle; ++r) {
-      if (guard_.MinAngleAround(touched) < opt_.minAngleDeg - opt_.angleRepairSlackDeg) break;
-      const std::vector<int> sharp = guard_.SharpCornersAround(touched, opt_.minAngleDeg);
+      if (guard_.MinAngleAndSharpCorners(touched, opt_.minAngleDeg, &sharp) <
+          opt_.minAngleDeg - opt_.angleRepairSlackDeg)
+        break;
       guard_.RelaxAround(sharp);
       touched.insert(touched.end(), sharp.begin(), sharp.end());
       verdict = g.Verdict(touched);
       double atCrease = 180;
-      if (verdict == GuardVerdict::Kept && guard_.MinAngleAround(touched, &atCrease) < opt_.minAngleDeg)
+      if (verdict == GuardVerdict::Kept && guard_.MinAngleOfJudged(&atCrease) < opt_.minAngleDeg)
         verdict = GuardVerdict::Angle;
     }
     return verdict;
