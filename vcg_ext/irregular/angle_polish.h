@@ -20,7 +20,6 @@
 
 #include "edit_guard.h"
 #include "reduction_options.h"
-#include "topology.h"
 
 namespace vcg_ext {
 namespace irregular {
@@ -39,17 +38,6 @@ AnglePolishReport PolishAngles(MeshType& m, EditGuard<MeshType>& guard, Reductio
   MeshEditor<MeshType>& ed = guard.ed();
   AnglePolishReport out;
   auto below = [&](const FaceType* f) { return EditGuard<MeshType>::MinAngle(f) < deg; };
-  auto countAround = [&](const std::vector<int>& seeds) {
-    int n = 0;
-    std::vector<int> ring = KRing(m, seeds, 2);
-    std::vector<const FaceType*> seen;
-    for (int v : ring)
-      for (auto& c : ed.Star(v).corners) seen.push_back(c.f);
-    std::sort(seen.begin(), seen.end());
-    seen.erase(std::unique(seen.begin(), seen.end()), seen.end());
-    for (const FaceType* f : seen) n += below(f);
-    return n;
-  };
   for (int round = 0; round < rounds; ++round) {
     std::vector<std::vector<int>> todo;
     for (auto& f : m.face) {
@@ -64,14 +52,14 @@ AnglePolishReport PolishAngles(MeshType& m, EditGuard<MeshType>& guard, Reductio
     if (round == 0) out.below = int(todo.size());
     int keptThisRound = 0;
     for (const std::vector<int>& seeds : todo) {
-      const int before = countAround(seeds);
+      const int before = guard.CountBelowAround(seeds, deg);
       if (before == 0) continue;  // an earlier relaxation fixed it
       // subjects: none (no irregular vertex is this edit's subject, so a refusal is not a
       // leftover's reason); refusals are not counted as the reduction's undone edits either
       const std::vector<int> none;
       GuardedEdit<MeshType> g(guard, rep, seeds, &none);
       guard.RelaxAround(seeds);
-      if (countAround(seeds) < before && g.Verdict(seeds) == GuardVerdict::Kept) {
+      if (guard.CountBelowAround(seeds, deg) < before && g.Verdict(seeds) == GuardVerdict::Kept) {
         g.Keep(seeds);
         ++out.kept;
         ++keptThisRound;

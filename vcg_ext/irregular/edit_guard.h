@@ -162,6 +162,14 @@ class EditGuard {
     return maxCos > -2 ? std::min(180.0, AngleOfCos(maxCos)) : 180;
   }
 
+  /// How many faces around the 2-ring of the seeds (each once) have an angle under `deg`.
+  int CountBelowAround(const std::vector<int>& seeds, double deg) {
+    GatherChanged(seeds, region_, changed_);
+    int n = 0;
+    for (const FaceType* f : changed_) n += MinAngle(f) < deg;
+    return n;
+  }
+
   /// MinAngleAround(touched, atCrease) right after Judge(touched) passed it, with nothing
   /// edited since: the faces that verdict gathered, without gathering them again.
   double MinAngleOfJudged(double* atCrease) const { return MinAngleOf(changed_, atCrease); }
