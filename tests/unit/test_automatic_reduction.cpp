@@ -34,6 +34,14 @@ bool RemeshedCorpus(TMesh& m, const char* name, int n, std::unique_ptr<SurfacePr
   RemeshIsotropic(m, ro);
   return true;
 }
+/// A run of the reduction that must succeed and leave a valid mesh (mesh_checks.h).
+ReductionReport RunValid(TMesh& m, const SurfaceProjector& input, const ReductionOptions& opt) {
+  ReductionReport r = AutomaticReduction<TMesh>(m, input, opt).Run();
+  EXPECT_TRUE(r) << r.result.reason;
+  const Result inv = CheckInvariants(m);
+  EXPECT_TRUE(inv.ok) << inv.reason;
+  return r;
+}
 /// The largest distance from `from` (all its vertices and `samples` random surface points) to
 /// `to`, by vcglib's HausdorffSampler (the code of MeshLab's Hausdorff Distance filter): a
 /// measure independent of vcg_ext's HausdorffPercent.
@@ -479,6 +487,72 @@ INSTANTIATE_TEST_SUITE_P(Corpus, ReductionWithHoles, ::testing::Values("mesh_wit
                            std::string s(i.param);
                            return s.substr(0, s.find('.'));
                          });
+
+// The boundary stage's edits split and collapse boundary edges; their relaxation slides the
+// boundary vertices around along the input's boundary (ReductionOptions::boundarySlide). Where
+// they end up: with the slide, every boundary vertex of the result lies on the input's boundary
+// polyline (within 1e-5 of the diagonal), and fewer of the input's boundary vertices are at
+// their old places (they moved along it); without it, the input's boundary vertices stay, and
+// the ones a split or collapse placed on a chord of a curved hole stay there, off the input's
+// boundary. Both runs keep the invariants and the boundary count bound.
+TEST(AutomaticReduction, BoundaryStageSlidesBoundaryVerticesAlongTheInputBoundary) {
+  int atInputPosition[2] = {0, 0}, boundaryAfter[2] = {0, 0}, interiorAfter[2] = {0, 0}, kept[2] = {0, 0};
+  int boundaryInput = 0, offCount[2] = {0, 0};
+  double maxOff[2] = {0, 0};
+  for (int slide = 0; slide < 2; ++slide) {
+    TMesh m;
+    std::unique_ptr<SurfaceProjector> input;
+    ASSERT_TRUE(RemeshedCorpus(m, "holes.off", 3000, &input)) << "corpus mesh missing (run scripts/setup.sh)";
+    const BoundaryCurve curve(m);
+    ASSERT_GT(curve.Segments(), 20u);
+    std::set<std::array<double, 3>> inputBoundary;
+    for (auto& f : m.face)
+      for (int z = 0; z < 3; ++z)
+        if (f.cFFp(z) == &f)
+          for (int e = 0; e < 2; ++e) {
+            const auto& p = f.cP((z + e) % 3);
+            inputBoundary.insert({double(p[0]), double(p[1]), double(p[2])});
+          }
+    boundaryInput = int(inputBoundary.size());
+    vcg::tri::UpdateBounding<TMesh>::Box(m);
+    const double diag = double(m.bbox.Diag());
+    const IrregularByPlace before = CountIrregularByPlace(m);
+    ReductionOptions opt;
+    opt.boundarySlide = slide == 1;
+    const ReductionReport r = RunValid(m, *input, opt);
+    ASSERT_FALSE(::testing::Test::HasFailure());
+    const IrregularByPlace after = CountIrregularByPlace(m);
+    EXPECT_LE(after.boundary, before.boundary);
+    boundaryAfter[slide] = after.boundary, interiorAfter[slide] = after.interior, kept[slide] = r.boundaryStage.Kept();
+    std::set<const TMesh::VertexType*> seen;
+    for (auto& f : m.face)
+      for (int z = 0; z < 3; ++z) {
+        if (f.cFFp(z) != &f) continue;
+        for (int e = 0; e < 2; ++e) {
+          const TMesh::VertexType* v = f.cV((z + e) % 3);
+          if (!seen.insert(v).second) continue;
+          double d = 0;
+          curve.Closest(v->cP(), &d);
+          maxOff[slide] = std::max(maxOff[slide], d / diag);
+          offCount[slide] += d > 1e-5 * diag;
+          atInputPosition[slide] += inputBoundary.count({double(v->cP()[0]), double(v->cP()[1]), double(v->cP()[2])});
+        }
+      }
+  }
+  std::printf("holes at 3000: boundary vertices at an input position %d (no slide) / %d (slide) of %d; interior "
+              "irregular %d / %d, boundary %d / %d, stage kept %d / %d; off the polyline %d / %d, at most %g / %g diag\n",
+              atInputPosition[0], atInputPosition[1], boundaryInput, interiorAfter[0], interiorAfter[1],
+              boundaryAfter[0], boundaryAfter[1], kept[0], kept[1], offCount[0], offCount[1], maxOff[0], maxOff[1]);
+  EXPECT_GT(kept[0], 0);
+  EXPECT_GT(kept[1], 0);
+  // with the slide, every boundary vertex is on the input's boundary: the relaxation projects
+  // the vertices a boundary split or collapse placed on a chord back onto it
+  EXPECT_EQ(offCount[1], 0) << maxOff[1];
+  // without it, those stay on their chords, off the input's boundary
+  EXPECT_GT(offCount[0], 0);
+  // and the input's boundary vertices stay where they were, while the slide moves many along
+  EXPECT_LT(atInputPosition[1], atInputPosition[0] - 10);
+}
 
 // Bounded effort (issue 14, "thin parts make it grind"): on a thin torus (tube radius 0.3, 8
 // edges around: about 2 edge lengths across) with a 5-5-7-7 quadruple whose pairs are 3 steps

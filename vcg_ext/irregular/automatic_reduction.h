@@ -58,6 +58,7 @@ class AutomaticReduction {
         opt_(ScaleTravel(std::move(opt), m)),
         ed_(m),
         crease_(CreaseLineVertices(m, opt_.creaseDeg, opt_.creaseMinEdges)),
+        inputBoundary_(m),
         comp_(ed_, &original, Quiet(&crease_)),
         state_(m, ed_, opt_),
         guard_(m, original, opt_, ed_, state_, &crease_),
@@ -153,12 +154,16 @@ class AutomaticReduction {
       boundaryEdit.reset(new GuardedEdit<MeshType>(guard_, rep, around));
       boundaryRelaxed.clear();
     };
+    // the stage's edits split and collapse boundary edges: their relaxation lets the boundary
+    // vertices around slide along the input's boundary, or the triangles there stay squeezed
+    // and the angle check refuses the edit (ReductionOptions::boundarySlide)
+    const BoundaryCurve* slide = opt_.boundarySlide ? &inputBoundary_ : nullptr;
     bg.relax = [&](const std::vector<int>& seeds) {
-      guard_.RelaxAround(seeds);
+      guard_.RelaxAround(seeds, slide);
       boundaryRelaxed.insert(boundaryRelaxed.end(), seeds.begin(), seeds.end());
     };
     bg.accept = [&](const std::vector<int>& touched) {
-      guard_.RelaxAround(touched);
+      guard_.RelaxAround(touched, slide);
       // judged where anything moved: the touched vertices and every seed relaxed on the way
       std::vector<int> judged(touched);
       judged.insert(judged.end(), boundaryRelaxed.begin(), boundaryRelaxed.end());
@@ -435,6 +440,9 @@ class AutomaticReduction {
   /// (the guard's crease check undoes an edit that cuts a crease); indices are stable during a
   /// run (nothing is compacted until its end).
   std::vector<char> crease_;
+  /// The input's boundary polyline (empty on a closed mesh), along which the boundary stage's
+  /// relaxations slide boundary vertices (opt.boundarySlide). O(boundary edges).
+  BoundaryCurve inputBoundary_;
   CompositeOperations<MeshType> comp_;
   ReductionState<MeshType> state_;
   EditGuard<MeshType> guard_;

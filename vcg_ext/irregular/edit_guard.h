@@ -97,7 +97,10 @@ class EditGuard {
   }
 
   /// Local relaxation (sec. 8) of the 2-ring of the seeds, journaled so the guard can undo it.
-  void RelaxAround(const std::vector<int>& seeds) {
+  /// Boundary vertices stay, unless slideAlong is given: then those whose corner is nearly
+  /// straight slide along it (LocalRelax, RelaxOptions::boundaryCurve), for edits on the
+  /// boundary.
+  void RelaxAround(const std::vector<int>& seeds, const BoundaryCurve* slideAlong = nullptr) {
     const std::vector<int> live = LiveOf(seeds);
     if (live.empty()) return;
     std::vector<int> ring = KRing(m_, live, 2), movable;
@@ -109,6 +112,7 @@ class EditGuard {
     }
     RelaxOptions ro;
     ro.iterations = opt_.localRelaxIterations;
+    ro.boundaryCurve = slideAlong;
     LocalRelax(m_, movable, &original_, ro, crease_);  // crease vertices stay: moving them rounds the crease
   }
 
