@@ -357,7 +357,10 @@ std::vector<FilterSpec> MakeCatalog() {
       "Removes as many irregular vertices as the quality limits allow, with the paper's operations only (what its "
       "designers did by hand): type splitting into v5/v7 (sec. 6.3), triple and quadruple removals where they apply "
       "(sec. 6.2), 5-7 pairs moved to the nearest irregular vertex or gliding straight on until they cancel (sec. "
-      "7.1-7.2), and stretched 5-7 pairs split into two adjacent pairs that are cancelled in turn. Every edit is "
+      "7.1-7.2), and stretched 5-7 pairs split into two adjacent pairs that are cancelled in turn. On a mesh with "
+      "holes, interior irregular vertices near a hole are moved into its boundary or cancelled there, never leaving "
+      "more boundary irregular vertices than the input had (corner rule); the boundary vertices around such an edit "
+      "slide along the input's boundary. Every edit is "
       "relaxed locally and undone if it leaves a triangle under the minimum angle or the input surface by more than "
       "the Hausdorff budget; the whole mesh is relaxed at the end. Creases stay sharp: the vertices of crease lines (8 "
       "or more connected edges sharper than 60 degrees) are never relaxed, and an edit that moves the surface 0.05% "
@@ -375,8 +378,8 @@ std::vector<FilterSpec> MakeCatalog() {
                  "as 'Remeshing: Isotropic Explicit Remeshing'), so one run goes from a scan to a clean result. 0 "
                  "keeps the mesh as it is."),
       Int("targetCount", 0, 0, 1000000000, "Target irregular count",
-          "Stop once this many interior irregular vertices remain (the reduction does not edit boundary vertices, "
-          "so they do not count); 0 removes as many as the limits below allow. A closed surface of genus g keeps "
+          "Stop once this many interior irregular vertices remain (boundary irregular vertices do not count: "
+          "the reduction never leaves more of them than the input had); 0 removes as many as the limits below allow. A closed surface of genus g keeps "
           "at least |12 - 12g| (Gauss-Bonnet, eq. 2)."),
       Float("hausdorffBudget", 0.5, 0, 100, "Hausdorff budget (% of diagonal)",
             "An edit whose triangles would leave the input surface by more than this (percent of the bounding-box "

@@ -167,7 +167,7 @@ def test_genus_three_keeps_its_topology_and_stops_at_the_target():
 
 def test_target_count_on_a_mesh_with_boundary():
     """stop_reason 1 says the target was reached: targetCount counts interior irregular vertices
-    (README: the reduction does not edit boundary vertices); interior_irregular_after is then at
+    (boundary irregular vertices do not count); interior_irregular_after is then at
     most targetCount, and irregular_after counts the boundary ones too, as Analyze does."""
     ms = load("mesh_with_border.off")
     t0 = tri(ms)
