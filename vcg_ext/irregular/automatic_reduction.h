@@ -175,7 +175,8 @@ class AutomaticReduction {
     };
     BoundaryReductionOptions bo = opt_.boundary;
     bo.boundaryLimit = rep.boundaryIrregularBefore;  // the input's count, also on a budget retry
-    BoundaryReduction<MeshType> boundary(ed_, &original_, bg, opt_.frozen.empty() ? nullptr : &opt_.frozen, bo);
+    BoundaryReduction<MeshType> boundary(ed_, &original_, bg, opt_.frozen.empty() ? nullptr : &opt_.frozen, bo,
+                                         &inputBoundary_);
     // Growing travel: cheap local cancellations everywhere first, so the long transports only
     // run for what is left. Sweeps: local removals only until they stop paying, then with
     // transports, until a sweep removes nothing (or a small share) more.
@@ -441,7 +442,8 @@ class AutomaticReduction {
   /// run (nothing is compacted until its end).
   std::vector<char> crease_;
   /// The input's boundary polyline (empty on a closed mesh), along which the boundary stage's
-  /// relaxations slide boundary vertices (opt.boundarySlide). O(boundary edges).
+  /// relaxations slide boundary vertices (opt.boundarySlide); the stage reads this one rather
+  /// than building its own. O(boundary edges).
   BoundaryCurve inputBoundary_;
   CompositeOperations<MeshType> comp_;
   ReductionState<MeshType> state_;

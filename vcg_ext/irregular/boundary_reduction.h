@@ -204,12 +204,16 @@ class BoundaryReduction {
   /// ed: the driver's editor (journaled). original: the input surface (the default relaxation
   /// projects on it; may be null: no default relaxation). frozen: per vertex index, 1 = never
   /// touched (may be null; vertices created later are free). Counts the input's boundary
-  /// irregular vertices (the limit) unless opt.boundaryLimit >= 0. O(V + F).
+  /// irregular vertices (the limit) unless opt.boundaryLimit >= 0. inputBoundary: the
+  /// boundary polyline the default relaxation slides along, if the caller has it (it must
+  /// outlive the stage); null: the stage builds it from the mesh as it is now. O(V + F).
   BoundaryReduction(Editor& ed, const SurfaceProjector* original, BoundaryEditGuard guard,
                     const std::vector<char>* frozen = nullptr,
-                    BoundaryReductionOptions opt = BoundaryReductionOptions())
+                    BoundaryReductionOptions opt = BoundaryReductionOptions(),
+                    const BoundaryCurve* inputBoundary = nullptr)
       : ed_(ed), m_(ed.Mesh()), original_(original), guard_(std::move(guard)), frozen_(frozen), opt_(opt),
-        bops_(ed), ops_(ed), curve_(ed.Mesh()) {
+        bops_(ed), ops_(ed), ownCurve_(inputBoundary ? nullptr : new BoundaryCurve(ed.Mesh())),
+        curve_(inputBoundary ? inputBoundary : ownCurve_.get()) {
     limit_ = opt_.boundaryLimit >= 0 ? opt_.boundaryLimit : CountIrregularByPlace(m_).boundary;
   }
 
@@ -618,7 +622,7 @@ class BoundaryReduction {
     }
     RelaxOptions ro;
     ro.iterations = opt_.relaxIterations;
-    ro.boundaryCurve = &curve_;
+    ro.boundaryCurve = curve_;
     LocalRelax(m_, ring, original_, ro);
   }
 
@@ -630,7 +634,8 @@ class BoundaryReduction {
   BoundaryReductionOptions opt_;
   BoundaryOperations<MeshType> bops_;
   AtomicOperations<MeshType> ops_;
-  BoundaryCurve curve_;  ///< the boundary when the stage was built, for the default relaxation
+  std::unique_ptr<BoundaryCurve> ownCurve_;  ///< built only when the caller gave no boundary
+  const BoundaryCurve* curve_;               ///< the input's boundary, for the default relaxation
   int limit_ = 0;
   std::vector<signed char> status_;  ///< per vertex: kRegular, kInterior or kBoundary (irregular)
   int interior_ = 0, boundary_ = 0;  ///< current counts, kept up to date edit by edit
