@@ -1004,6 +1004,88 @@ TEST(AutomaticReduction, PartialAbsorptionsHappenOnlyWhenAskedAndKeepTheMeshVali
   EXPECT_GT(partial[1], 0);
 }
 
+// The repeated-failure memo (ReductionState::UnchangedSinceFailure) sees only edits that were
+// kept in the end: an edit kept inside an outer one that is then undone leaves no stamp, and
+// an outermost edit kept stamps what it and the edits inside it touched.
+TEST(ReductionParts, OnlyEditsKeptInTheEndMakeAFailedVertexWorthRetrying) {
+  TMesh m;
+  test::RegularTorus(m, 24, 12);
+  MeshEditor<TMesh> ed(m);
+  ReductionOptions opt;
+  ReductionState<TMesh> state(m, ed, opt);
+  const int v = 0, near = 12, far = 12 * 12 + 6;  // (0, 0); (1, 0), next to it; (12, 6)
+  ASSERT_TRUE(ed.Adjacent(v, near));
+  state.Failed(v);
+  state.Failed(far);
+  EXPECT_TRUE(state.UnchangedSinceFailure(v, 4));
+  // inner edit kept, outer undone (it never calls Kept)
+  state.EnterEdit();
+  state.EnterEdit();
+  state.Kept({near});
+  state.LeaveEdit();
+  state.LeaveEdit();
+  EXPECT_EQ(state.Epoch(), 1);
+  EXPECT_TRUE(state.UnchangedSinceFailure(v, 4));
+  // the same, with the outer edit kept: its touched list holds the inner one's vertices
+  state.EnterEdit();
+  state.EnterEdit();
+  state.Kept({near});
+  state.LeaveEdit();
+  state.Kept({near, v});
+  state.LeaveEdit();
+  EXPECT_FALSE(state.UnchangedSinceFailure(v, 4));
+  EXPECT_TRUE(state.UnchangedSinceFailure(far, 4));  // 6 or more edges from what the edit touched
+  EXPECT_FALSE(state.UnchangedSinceFailure(far, 24));
+}
+
+// On a real mesh: split-and-absorbs that kept transports inside and were then undone whole
+// leave every vertex that had failed around them as unchanged as it was, at the driver's
+// radius (2 x travel); and they do happen (bunny00 remeshed to 3000 vertices).
+TEST(ReductionParts, AnUndoneSplitAndAbsorbLeavesTheFailedVerticesAroundItUnchanged) {
+  TMesh m;
+  std::unique_ptr<SurfaceProjector> input;
+  ASSERT_TRUE(RemeshedCorpus(m, "bunny00.off", 3000, &input)) << "corpus mesh missing (run scripts/setup.sh)";
+  ReductionOptions opt;
+  Parts p(m, *input, opt);
+  p.state.StartCount();
+  ReductionReport rep;
+  const int travel = 12, radius = 2 * travel;
+  std::vector<int> failed;
+  int undoneWithInnerKept = 0, checked = 0;
+  for (int pass = 0; pass < 2; ++pass)
+    for (size_t i = 0; i < m.vert.size(); ++i) {
+      const int v = int(i);
+      if (!p.state.IsInteriorIrregular(v)) continue;
+      if (p.cancel.CancelAround(rep, v)) continue;
+      if (p.state.UnchangedSinceFailure(v, radius)) continue;
+      if (p.ed.Valence(v) == 5 && p.transport.Transport(rep, v, travel)) continue;
+      if (p.transport.Isolated(v)) {
+        // the failed vertices the attempt can reach (its edits stay within 2 x travel of v)
+        std::vector<int> unchanged;
+        const std::vector<int> around = KRing(m, {v}, radius);
+        const std::set<int> reach(around.begin(), around.end());
+        for (int u : failed)
+          if (reach.count(u) && p.ed.IsLive(u) && p.state.UnchangedSinceFailure(u, radius)) unchanged.push_back(u);
+        const long epoch = p.state.Epoch();
+        if (p.transport.SplitAndAbsorb(rep, v, travel)) continue;
+        if (p.state.Epoch() > epoch) {
+          ++undoneWithInnerKept;
+          for (int u : unchanged) {
+            EXPECT_TRUE(p.state.UnchangedSinceFailure(u, radius)) << "vertex " << u << " after the attempt at " << v;
+            ++checked;
+          }
+        }
+      }
+      p.state.Failed(v);
+      failed.push_back(v);
+    }
+  EXPECT_GT(undoneWithInnerKept, 0);
+  EXPECT_GT(checked, 0);
+  std::printf("%d undone split-and-absorbs with transports kept inside; %d failed vertices checked around them\n",
+              undoneWithInnerKept, checked);
+  ASSERT_TRUE(CheckInvariants(m).ok);
+}
+
 // A region given up for routes that turned a triangle over (thin parts: most undone routes
 // there fold) says so in its log line.
 TEST(ReductionParts, AGivenUpRegionNamesFoldedRoutes) {

@@ -244,7 +244,12 @@ class AutomaticReduction {
   /// edit was kept.
   bool Turn(ReductionReport& rep, int v, int travel) {
     if (cancel_.CancelAround(rep, v)) return true;
-    if (travel == 0 || state_.UnchangedSinceFailure(v, travel) || state_.TurnExhausted()) return false;
+    // What a failed turn read reaches 2 x travel edges from v: the partner of a
+    // split-and-absorb lies within travel, and the pairs its walk generates are transported up
+    // to travel from the walk. An edit kept within that reach can change the outcome; one
+    // farther cannot. (With travel as the radius, the triceratops kept 186 instead of 180;
+    // undone edits leave no stamp, ReductionState::Kept.)
+    if (travel == 0 || state_.UnchangedSinceFailure(v, 2 * travel) || state_.TurnExhausted()) return false;
     if (ed_.Valence(v) == 5 && transport_.Transport(rep, v, travel)) return true;
     if (state_.TurnExhausted()) return false;
     if (transport_.Isolated(v) && transport_.SplitAndAbsorb(rep, v, std::max(2, travel))) return true;

@@ -218,12 +218,17 @@ class ReductionState {
   void LeaveEdit() {
     if (--depth_ == 0) removed_.clear();
   }
-  /// A guarded edit was kept: stamp its vertices; the outermost one also updates the count
-  /// and commits the editor's journal, so the journal holds one edit at a time.
+  /// A guarded edit was kept. The outermost one stamps its vertices (its touched list holds
+  /// those of the edits kept inside it), updates the count and commits the editor's journal,
+  /// so the journal holds one edit at a time. An inner one stamps nothing: the edit around it
+  /// may still be undone, and a stamp left by an undone edit would make the repeated-failure
+  /// and given-up checks (UnchangedSinceFailure, GivenUp) see a change where the mesh has
+  /// none, and try again what fails the same way (the bull: 486 split-and-absorbs undone in
+  /// its last three sweeps, 0.9.13).
   void Kept(const std::vector<int>& touched) {
     ++epoch_;
-    for (int t : touched) Stamp(editedAt_, t, epoch_);
     if (depth_ == 1) {
+      for (int t : touched) Stamp(editedAt_, t, epoch_);
       UpdateCount(touched);
       ed_.Commit();
     }
@@ -246,13 +251,16 @@ class ReductionState {
   const std::map<int, int>& UndoneAt() const { return undoneAt_; }
 
   // ------------------------------------------------------------ repeated failures
+  /// Guarded edits kept so far, inner ones included (also those inside an edit undone later).
+  long Epoch() const { return epoch_; }
   /// A transport from v failed now.
   void Failed(int v) { Stamp(failedAt_, v, epoch_); }
   /// v's turn with the travel strategies kept nothing (tried now, or skipped as tried before
   /// and unchanged, or as given up): for the leftover reasons only (TriedUnchanged).
   void Tried(int v) { Stamp(triedAt_, v, epoch_); }
-  /// True if a transport from v already failed and nothing within `radius` edges has been
-  /// edited since: trying again would fail the same way (the search is deterministic).
+  /// True if a transport from v already failed and no edit kept since (an outermost one,
+  /// Kept) touched a vertex within `radius` edges: trying again would fail the same way (the
+  /// search is deterministic).
   bool UnchangedSinceFailure(int v, int radius) {
     const long failed = StampOf(failedAt_, v);
     if (failed < 0) return false;
