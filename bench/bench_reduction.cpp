@@ -9,7 +9,7 @@
 // does, SetFilterTravel, unless they are given): maxTravel, glideTravel, targetsPerPair, maxSweeps,
 // localRelaxIterations, minAngle, budget (Hausdorff, percent of the diagonal), maxRefusals
 // (maxRefusalsPerRegion; 0: no bound), partialAbsorption (0/1), reuseDeadSlots (0/1), boundarySlide (0/1),
-// angleRepairRounds, angleRepairSlack, travelReference (travelReferenceVertices),
+// refusedRouteMemo (0/1), angleRepairRounds, angleRepairSlack, travelReference (travelReferenceVertices),
 // maxTravelScale, creaseDeg, anglePolish (anglePolishDeg; 0: none), anglePolishRounds.
 // files: saveRemeshed=<path> writes the remeshed input (OFF), saveResult=<path> the result, for
 // profiling the reduction alone on a fixed input and for comparing two runs byte by byte (with
@@ -131,6 +131,7 @@ int main(int argc, char** argv) {
     else if (key == "partialAbsorption") opt.partialAbsorption = v != 0;
     else if (key == "reuseDeadSlots") opt.reuseDeadSlots = v != 0;
     else if (key == "boundarySlide") opt.boundarySlide = v != 0;
+    else if (key == "refusedRouteMemo") opt.refusedRouteMemo = v != 0;
     else if (key == "creaseDeg") opt.creaseDeg = v;
     else if (key == "anglePolish") opt.anglePolishDeg = v;
     else if (key == "anglePolishRounds") opt.anglePolishRounds = int(v);

@@ -146,6 +146,34 @@ TEST(AutomaticReduction, IsDeterministic) {
   for (size_t i = 0; i < a.vert.size(); ++i) ASSERT_EQ(a.vert[i].P(), b.vert[i].P()) << i;
 }
 
+// The refused-route memo (ReductionOptions::refusedRouteMemo) only skips work: with it and
+// without it the run gives the same mesh to the bit and the same counts and refusals, and it
+// does skip tries (bunny00 remeshed to 3000 vertices).
+TEST(AutomaticReduction, RefusedRouteMemoChangesNothingButTheWork) {
+  TMesh with, without;
+  std::unique_ptr<SurfaceProjector> iw, io;
+  ASSERT_TRUE(RemeshedCorpus(with, "bunny00.off", 3000, &iw)) << "corpus mesh missing (run scripts/setup.sh)";
+  ASSERT_TRUE(RemeshedCorpus(without, "bunny00.off", 3000, &io));
+  ReductionOptions on, off;
+  off.refusedRouteMemo = false;
+  const ReductionReport a = RunValid(with, *iw, on), b = RunValid(without, *io, off);
+  ASSERT_FALSE(::testing::Test::HasFailure());
+  EXPECT_GT(a.routesRefusedAgain, 0);
+  EXPECT_EQ(b.routesRefusedAgain, 0);
+  std::printf("%d tries refused again from the memo; %d irregular left, %d edits undone\n", a.routesRefusedAgain,
+              a.irregularAfter, a.undone);
+  EXPECT_EQ(a.irregularAfter, b.irregularAfter);
+  EXPECT_EQ(a.undone, b.undone);
+  EXPECT_EQ(a.undoneAngle, b.undoneAngle);
+  EXPECT_EQ(a.undoneHausdorff, b.undoneHausdorff);
+  EXPECT_EQ(a.transports, b.transports);
+  EXPECT_EQ(a.splitAbsorptions, b.splitAbsorptions);
+  EXPECT_EQ(a.undoneAt, b.undoneAt);
+  ASSERT_EQ(with.vert.size(), without.vert.size());
+  EXPECT_EQ(test::CanonicalFaces(with), test::CanonicalFaces(without));
+  for (size_t i = 0; i < with.vert.size(); ++i) ASSERT_EQ(with.vert[i].P(), without.vert[i].P()) << i;
+}
+
 TEST(AutomaticReduction, FrozenVerticesAndTheirFacesAreUntouched) {
   TMesh m;
   std::unique_ptr<SurfaceProjector> input;
