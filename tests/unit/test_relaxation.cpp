@@ -502,3 +502,58 @@ TEST(Relaxation, LocalWalkingStarsAsNeededGivesTheSamePositionsAsKeepingThem) {
   EXPECT_GT(moved, 1000u) << "the relaxation moved the vertices (the comparison is not of two unmoved meshes)";
   EXPECT_TRUE(CheckInvariants(walked).ok);
 }
+
+// MoveHurts (the check of every relaxation move) against a direct measure: a move hurts if a
+// face of the vertex turns by more than acos(minCos) or degenerates, or if the smallest angle
+// of its faces falls under half of what it was. It skips measuring the angle before when the
+// one after is 30 degrees or more; the verdicts must be those of measuring both, on moves
+// that leave every kind of smallest angle (a jittered hexagonal disc, moves of up to 0.9 edge
+// lengths from the centre vertex).
+TEST(Relaxation, MoveHurtsAgreesWithMeasuringTheAnglesBeforeAndAfter) {
+  TMesh m;
+  test::HexPatch(m, 3);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> jitter(-0.2, 0.2), step(-0.9, 0.9);
+  for (auto& v : m.vert) v.P() += TMesh::CoordType(jitter(rng), jitter(rng), 0.3 * jitter(rng));
+  test::UpdateTopology(m);
+  TMesh::VertexType* v = &m.vert[0];  // the centre, (0, 0)
+  const VertexStar<TMesh> st = StarOf<TMesh>(v);
+  ASSERT_EQ(st.corners.size(), 6u);
+  auto minAngleDeg = [&]() {
+    double a = 180;
+    for (auto& c : st.corners) a = std::min(a, relax_detail::FaceMinAngleDeg(c.f));
+    return a;
+  };
+  const double minCos = std::cos(120 * M_PI / 180);
+  const double before = minAngleDeg();
+  const TMesh::CoordType home = v->P();
+  int hurts = 0, under30 = 0, kept = 0;
+  for (int k = 0; k < 4000; ++k) {
+    const TMesh::CoordType p = home + TMesh::CoordType(step(rng), step(rng), 0.2 * step(rng));
+    std::vector<TMesh::CoordType> normals;
+    for (auto& c : st.corners) normals.push_back(vcg::TriangleNormal(*c.f));
+    v->P() = p;
+    bool folds = false;
+    for (size_t i = 0; i < st.corners.size(); ++i) {
+      const TMesh::CoordType n = vcg::TriangleNormal(*st.corners[i].f);
+      const double lb = normals[i].Norm(), la = n.Norm();
+      folds = folds || la <= 1e-12 * lb || double(normals[i].dot(n)) / (lb * la) < minCos;
+    }
+    const double after = minAngleDeg();
+    v->P() = home;
+    const bool expected = folds || after < 0.5 * before - 1e-9;
+    if (!folds && std::abs(after - 0.5 * before) < 1e-7) continue;  // too close to call by another formula
+    ASSERT_EQ(relax_detail::MoveHurts<TMesh>(st, v, p, minCos), expected) << "move " << k << ": angle " << after
+                                                                            << " after, " << before << " before";
+    ASSERT_EQ(v->P(), home);
+    hurts += expected;
+    under30 += !folds && after < 30;
+    kept += !expected;
+  }
+  // the sample has every case: kept moves, hurting ones, and moves that leave angles under 30
+  // degrees whose verdict needed the angle before
+  EXPECT_GT(kept, 100);
+  EXPECT_GT(hurts, 100);
+  EXPECT_GT(under30, 100);
+  std::printf("before %.1f degrees; %d kept, %d hurt, %d under 30 degrees after\n", before, kept, hurts, under30);
+}

@@ -258,7 +258,10 @@ double MaxCornerCos(const FaceType* f) {
 /// A move is kept if it folds nothing (no face of v turns by more than acos(minCos)) and does
 /// not halve the smallest angle around the vertex (the simultaneous global solve can otherwise
 /// squeeze a single triangle). One pass over the star at v's place, one with v at p: this runs
-/// for every vertex of every relaxation sweep.
+/// for every vertex of every relaxation sweep. The smallest angle before is measured only when
+/// the one after is under 30 degrees: no triangle's smallest angle exceeds 60, so an angle after
+/// of 30 or more halves nothing (its corner cosines were 7% of Automatic Reduction's
+/// instructions on fandisk, half of them for the angle before).
 template <class MeshType>
 bool MoveHurts(const VertexStar<MeshType>& st, typename MeshType::VertexType* v, const typename MeshType::CoordType& p,
                double minCos) {
@@ -268,11 +271,8 @@ bool MoveHurts(const VertexStar<MeshType>& st, typename MeshType::VertexType* v,
   CoordType onStack[16];
   std::vector<CoordType> onHeap(n > 16 ? n : 0);
   CoordType* normalBefore = n > 16 ? onHeap.data() : onStack;
-  double maxCosBefore = -1.0, maxCosAfter = -1.0;
-  for (size_t i = 0; i < n; ++i) {
-    normalBefore[i] = vcg::TriangleNormal(*st.corners[i].f);
-    maxCosBefore = std::max(maxCosBefore, MaxCornerCos(st.corners[i].f));
-  }
+  for (size_t i = 0; i < n; ++i) normalBefore[i] = vcg::TriangleNormal(*st.corners[i].f);
+  double maxCosAfter = -1.0;
   const CoordType old = v->P();
   v->P() = p;
   bool folds = false;
@@ -286,9 +286,15 @@ bool MoveHurts(const VertexStar<MeshType>& st, typename MeshType::VertexType* v,
   v->P() = old;
   if (folds) return true;
   // the smallest angles after and before: acos is decreasing and correctly rounded (so
-  // monotone), so each is the acos of the largest cosine, one acos per side
-  return std::acos(std::max(-1.0, std::min(1.0, maxCosAfter))) <
-         0.5 * std::acos(std::max(-1.0, std::min(1.0, maxCosBefore)));
+  // monotone), so each is the acos of the largest cosine, one acos per side. Before: a largest
+  // corner cosine of a triangle is at least 0.5 (its smallest angle at most 60 degrees; 1 for
+  // a degenerate one), up to rounding, so half the angle before is under kHalfOfAtMost.
+  static const double kHalfOfAtMost = 0.5 * std::acos(0.5 - 1e-9);
+  const double after = std::acos(std::max(-1.0, std::min(1.0, maxCosAfter)));
+  if (after >= kHalfOfAtMost) return false;
+  double maxCosBefore = -1.0;
+  for (size_t i = 0; i < n; ++i) maxCosBefore = std::max(maxCosBefore, MaxCornerCos(st.corners[i].f));
+  return after < 0.5 * std::acos(std::max(-1.0, std::min(1.0, maxCosBefore)));
 }
 
 template <class MeshType>
