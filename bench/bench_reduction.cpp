@@ -9,7 +9,7 @@
 // does, SetFilterTravel, unless they are given): maxTravel, glideTravel, targetsPerPair, maxSweeps,
 // localRelaxIterations, minAngle, budget (Hausdorff, percent of the diagonal), maxRefusals
 // (maxRefusalsPerRegion; 0: no bound), partialAbsorption (0/1), reuseDeadSlots (0/1), boundarySlide (0/1),
-// refusedRouteMemo (0/1), angleRepairRounds, angleRepairSlack, travelReference (travelReferenceVertices),
+// refusedRouteMemo (0/1), farMeetingReach, farMeetingTravel (0: no far meetings), angleRepairRounds, angleRepairSlack, travelReference (travelReferenceVertices),
 // maxTravelScale, creaseDeg, anglePolish (anglePolishDeg; 0: none), anglePolishRounds.
 // files: saveRemeshed=<path> writes the remeshed input (OFF), saveResult=<path> the result, for
 // profiling the reduction alone on a fixed input and for comparing two runs byte by byte (with
@@ -136,6 +136,8 @@ int main(int argc, char** argv) {
     else if (key == "anglePolish") opt.anglePolishDeg = v;
     else if (key == "anglePolishRounds") opt.anglePolishRounds = int(v);
     else if (key == "timeLimit") opt.timeLimitSeconds = v > 0 ? v : opt.timeLimitSeconds;
+    else if (key == "farMeetingReach") opt.farMeetingReach = v;
+    else if (key == "farMeetingTravel") opt.farMeetingTravel = v;
     else if (key == "memory") memory = v != 0;
     else if (key == "loadOnly") loadOnly = v != 0;
     else {
@@ -204,9 +206,11 @@ int main(int argc, char** argv) {
                 Summarize(m).eulerCharacteristic, r.irregularBefore, r.irregularAfter, 100.0 * r.irregularAfter / m.vn,
                 HausdorffPercent(m, input), s.minAngleDeg, 100 * s.shareBelow30,
                 std::chrono::duration<double>(t1 - t0).count(), std::chrono::duration<double>(t2 - t1).count(), r.budgetRetries, int(r.gaveUp.size()), r.gaveUpVertices, r.allUndone ? " (all undone)" : "");
-    std::printf("  %s; travel %d; undone %d (angle %d, Hausdorff %d, frozen %d, boundary %d); angle polish %d of %d%s\n",
+    std::printf("  %s; travel %d; undone %d (angle %d, Hausdorff %d, frozen %d, boundary %d); angle polish %d of %d; "
+                "far meetings %d of %d%s\n",
                 r.leftovers.Summary().c_str(), r.travel, r.undone, r.undoneAngle, r.undoneHausdorff, r.undoneFrozen,
-                r.undoneBoundary, r.anglePolished, r.anglePolishBelow, r.finalSweepsUndone ? "; final sweeps undone" : "");
+                r.undoneBoundary, r.anglePolished, r.anglePolishBelow, r.farMeetingsKept, r.farMeetings,
+                r.finalSweepsUndone ? "; final sweeps undone" : "");
     std::fflush(stdout);
   }
   const double peak = StatusMiB("VmHWM");

@@ -148,6 +148,9 @@ FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par
            "%d edits undone (angle or Hausdorff limit)",
            rep.typeSplits, rep.localCancellations, rep.transports, rep.glides, rep.pairSteps, rep.splitAbsorptions,
            rep.partialAbsorptions, rep.undone);
+  ctx.Logf("Far meetings: %d of %d irregular vertices with no partner within the travel but one within %.1fx it "
+           "cancelled by a longer walk",
+           rep.farMeetingsKept, rep.farMeetings, opt.farMeetingReach);
   ctx.Logf("Pair travel: %d steps (maxTravel %d%s); %d routes kept after their sharpest triangles were relaxed again",
            rep.travel, opt.maxTravel,
            rep.travel != opt.maxTravel ? ", grown with the square root of the vertex count above 20000" : "",
@@ -215,6 +218,8 @@ FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par
   out.SetInt("pair_steps", rep.pairSteps);
   out.SetInt("split_absorptions", rep.splitAbsorptions);
   out.SetInt("partial_absorptions", rep.partialAbsorptions);
+  out.SetInt("far_meetings", rep.farMeetings);
+  out.SetInt("far_meetings_kept", rep.farMeetingsKept);
   out.SetInt("angle_repairs", rep.angleRepairs);
   out.SetInt("angle_polished", rep.anglePolished);
   out.SetInt("angle_polish_below", rep.anglePolishBelow);

@@ -1226,3 +1226,54 @@ TEST(ReductionParts, AnglePolishRelaxesShearedTrianglesAwayAndOnlyThere) {
     EXPECT_TRUE(test::Snapshot(m) == snap);
   }
 }
+
+// Far meetings (AutomaticReduction::FarMeetings): after the sweeps, the interior irregular
+// vertices with no partner within maxTravel edges but one within farMeetingReach x maxTravel
+// get one more turn with the longer travel. Off, none is tried; on, only such vertices can be
+// tried (they are found on the mesh the sweeps leave, which is the same either way: the far
+// meetings come after the sweeps), some are kept, fewer irregular vertices are left, the mesh
+// stays valid and within the budget, and a vertex left as "no partner" has none within the
+// far meetings' reach (that reach was searched). knot1 at 3000 vertices, travel 6.
+TEST(AutomaticReduction, FarMeetingsTryOnlyPartnersJustBeyondTheTravelAndCancelSome) {
+  // at 3000 vertices the default travel reaches across most of the knot: a shorter one leaves
+  // partners beyond it (as the default does at 20K)
+  const int n = 3000;
+  ReductionOptions off, on;
+  SetFilterTravel(off, 6);
+  SetFilterTravel(on, 6);
+  off.farMeetingReach = 0;
+  TMesh a, b;
+  std::unique_ptr<SurfaceProjector> ia, ib;
+  ASSERT_TRUE(RemeshedCorpus(a, "knot1.off", n, &ia)) << "corpus mesh missing (run scripts/setup.sh)";
+  ASSERT_TRUE(RemeshedCorpus(b, "knot1.off", n, &ib));
+  const ReductionReport ra = RunValid(a, *ia, off), rb = RunValid(b, *ib, on);
+  ASSERT_FALSE(::testing::Test::HasFailure());
+  EXPECT_EQ(ra.farMeetings, 0);
+  EXPECT_EQ(ra.farMeetingsKept, 0);
+  // the candidates, found on the result without far meetings (the same topology as the mesh
+  // the sweeps leave; the final relaxation moves no edge)
+  const int travel = ra.travel, reach = int(std::lround(on.farMeetingReach * travel));
+  LeftoverOptions nearOpt, farOpt;
+  nearOpt.reach = travel;
+  farOpt.reach = reach;
+  LeftoverAnalysis<TMesh> nearby(a, nearOpt), within(a, farOpt);
+  int candidates = 0;
+  for (int v : test::IrregularVertices(a)) candidates += nearby.PartnerOf(v) < 0 && within.PartnerOf(v) >= 0;
+  std::printf("knot1 at %d vertices: %d left without far meetings, %d candidates; with: %d of %d kept, %d left\n", n,
+              ra.irregularAfter, candidates, rb.farMeetingsKept, rb.farMeetings, rb.irregularAfter);
+  EXPECT_GT(rb.farMeetings, 0);
+  EXPECT_LE(rb.farMeetings, candidates);
+  EXPECT_GT(rb.farMeetingsKept, 0);
+  EXPECT_LE(rb.farMeetingsKept, rb.farMeetings);
+  EXPECT_LT(rb.irregularAfter, ra.irregularAfter);
+  EXPECT_LE(ra.irregularAfter - rb.irregularAfter, 3 * rb.farMeetingsKept);  // a kept turn removes 1-3
+  EXPECT_LE(rb.hausdorffPercent, on.hausdorffBudgetPercent);
+  LeftoverAnalysis<TMesh> after(b, farOpt);
+  int noPartner = 0;
+  for (const LeftoverVertex& x : rb.leftovers.vertices)
+    if (x.reason == LeftoverReason::NoPartner) {
+      ++noPartner;
+      EXPECT_LT(after.PartnerOf(x.vertex), 0) << "vertex " << x.vertex << " has a partner within " << reach;
+    }
+  EXPECT_EQ(noPartner, rb.leftovers.noPartner);
+}

@@ -9,8 +9,10 @@
 //   3. transport (sec. 7.1, 7.2): an adjacent 5-7 pair is moved by pair steps toward the
 //      nearest other irregular vertices, within a travel bound, until a removal applies there;
 //      stretched dislocations are split and absorbed (pair_transport.h);
-//   4. steps 2-3 repeat with a growing travel distance; a final relaxation (sec. 8) evens out
-//      the triangles.
+//   4. steps 2-3 repeat with a growing travel distance;
+//   5. far meetings: a vertex left with no partner within the travel, but one a little
+//      farther, gets one more turn with a longer travel (FarMeetings);
+//   6. a final relaxation (sec. 8) evens out the triangles.
 // Every edit is relaxed locally and passes the edit guard (edit_guard.h: angle bound,
 // Hausdorff budget, frozen region) or is undone. Settings: reduction_options.h; the run's
 // state (running count, stamps, the input snapshot): reduction_state.h.
@@ -192,6 +194,7 @@ class AutomaticReduction {
         travel = opt_.maxTravel;
       }
     }
+    if (go && !state_.Done()) go = FarMeetings(rep);
     if (rep.interrupted) return;
     // A stage after the sweeps (e.g. on the boundary) goes here: it runs even when the time
     // limit stopped the editing only if it is cheap; the final relaxation always does.
@@ -236,6 +239,55 @@ class AutomaticReduction {
       if (!kept && travel > 0) state_.Tried(v);
     }
     return true;
+  }
+
+  /// Far meetings, once after the sweeps: an interior irregular vertex left with no partner
+  /// within the travel (leftover_reasons.h: no irregular vertex it could cancel with within
+  /// maxTravel edges) but one within opt.farMeetingReach x maxTravel gets one more turn, whose
+  /// transports and split-and-absorb (sec. 7.1, 7.2) walk and carry the pairs they generate
+  /// opt.farMeetingTravel x maxTravel edges. The sweeps cannot do it: a stretched dislocation
+  /// whose v5 and v7 lie farther apart than the travel is never walked, and giving every turn
+  /// of every sweep the longer travel costs what the thorough setting costs (knot1 at 20K:
+  /// 3.4x the peer's time). The candidates are found in one pass over the vertices, each with a
+  /// search of the reach's rings; each turn costs what a sweep's turn with the longer travel
+  /// costs. False if interrupted or out of time.
+  bool FarMeetings(ReductionReport& rep) {
+    const int reach = FarReach();
+    if (reach <= opt_.maxTravel || opt_.farMeetingTravel <= 0) return true;
+    const int far = std::max(reach, int(std::lround(opt_.farMeetingTravel * opt_.maxTravel)));
+    std::vector<int> candidates;
+    {
+      LeftoverOptions nearOpt, farOpt;
+      nearOpt.reach = opt_.maxTravel;
+      farOpt.reach = reach;
+      LeftoverAnalysis<MeshType> nearby(m_, nearOpt), within(m_, farOpt);
+      for (size_t i = 0; i < m_.vert.size(); ++i) {
+        const int v = int(i);
+        if (!state_.IsInteriorIrregular(v) || state_.Frozen(v) || state_.GivenUp(v)) continue;
+        if (nearby.PartnerOf(v) < 0 && within.PartnerOf(v) >= 0) candidates.push_back(v);
+      }
+    }
+    for (size_t i = 0; i < candidates.size(); ++i) {
+      const int v = candidates[i];
+      if (!Stage(rep, int(80 + 10 * i / candidates.size()), "Meeting far partners")) return false;
+      if (state_.Done()) return true;
+      // an earlier far meeting may have cancelled or moved it
+      if (!state_.IsInteriorIrregular(v) || state_.Frozen(v)) continue;
+      ++rep.farMeetings;
+      state_.BeginTurn(v);
+      bool kept = cancel_.CancelAround(rep, v);
+      if (!kept && !state_.TurnExhausted() && ed_.Valence(v) == 5) kept = transport_.Transport(rep, v, far);
+      if (!kept && !state_.TurnExhausted() && transport_.Isolated(v)) kept = transport_.SplitAndAbsorb(rep, v, far, far);
+      state_.EndTurn();
+      if (kept) ++rep.farMeetingsKept;
+      else state_.Tried(v);  // a leftover reason of "no route" (or budget), not "untried"
+    }
+    return true;
+  }
+
+  /// The partner reach of the far meetings (0: they do not run).
+  int FarReach() const {
+    return opt_.farMeetingReach > 1 ? int(std::lround(opt_.farMeetingReach * opt_.maxTravel)) : 0;
   }
 
   /// v's turn: the per-vertex strategies, cheapest first; the first that edits ends it, and
@@ -322,7 +374,8 @@ class AutomaticReduction {
       if (g.vertex >= 0 && size_t(g.vertex) < undone.size())
         undone[size_t(g.vertex)] += g.refused - g.byReason[int(Refusal::NoCancellation)];
     LeftoverOptions lo;
-    lo.reach = opt_.maxTravel;
+    // a partner within the far meetings' reach was tried: "no partner" means none within it
+    lo.reach = std::max(opt_.maxTravel, FarReach());
     lo.undone = &undone;
     lo.tried = &state_.TriedUnchanged();
     if (!opt_.frozen.empty()) lo.frozen = &opt_.frozen;

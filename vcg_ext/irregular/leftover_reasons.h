@@ -219,6 +219,15 @@ class LeftoverAnalysis {
     return sum;
   }
 
+  /// The nearest interior irregular vertex within opt.reach edges that could cancel with v
+  /// (as for the "no partner" reason, NearestPartner), or -1; *distance: its distance in edges.
+  int PartnerOf(int v, int* distance = nullptr) {
+    int partner = -1, d = -1, nearest = -1;
+    NearestPartner(v, &partner, &d, &nearest);
+    if (distance) *distance = d;
+    return partner;
+  }
+
   /// The local thickness at v in mean edge lengths (see the header comment); infinity when
   /// nothing facing the other way lies within thinEdges edge lengths.
   double Thickness(int v, const VertexStar<MeshType>& s) {

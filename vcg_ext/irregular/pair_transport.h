@@ -87,8 +87,11 @@ class PairTransport {
   /// elsewhere (sec. 7.2); once v is next to w the two form an adjacent 5-7 pair, which is
   /// transported to a cancellation in turn. Kept if that last cancellation happens (net: two
   /// irregular vertices fewer), or, with opt.partialAbsorption, if the steps taken already
-  /// lowered the count; otherwise undone.
-  bool SplitAndAbsorb(ReductionReport& rep, int v, int radius) {
+  /// lowered the count; otherwise undone. innerTravel: how far the generated pairs and the
+  /// closing pair are transported (0: opt.maxTravel; the far meetings of automatic_reduction.h
+  /// pass a longer one, as the partner they walk to lies beyond the travel).
+  bool SplitAndAbsorb(ReductionReport& rep, int v, int radius, int innerTravel = 0) {
+    if (innerTravel <= 0) innerTravel = opt_.maxTravel;
     const int dv = ed_.Valence(v);
     std::vector<int> near = NearestIrregular({v}, radius, 1, dv == 5 ? 7 : 5);
     if (near.empty()) return false;
@@ -130,7 +133,7 @@ class PairTransport {
         if (ed_.Valence(p5) != 5) std::swap(p5, p7);
         // a removal of the generated pair against the moved vertex would only undo the step
         cancel_.exclude = {moved, w};
-        const bool away = Transport(rep, p5, p7, opt_.maxTravel, &touched);
+        const bool away = Transport(rep, p5, p7, innerTravel, &touched);
         cancel_.exclude.clear();
         if (away) {
           next = moved;
@@ -146,7 +149,7 @@ class PairTransport {
     if (!state_.TurnExhausted() && ed_.IsLive(cur) && ed_.IsLive(w) && ed_.Adjacent(cur, w) &&
         ed_.Valence(cur) + ed_.Valence(w) == 12) {
       const int a5 = ed_.Valence(cur) == 5 ? cur : w, a7 = a5 == cur ? w : cur;
-      if (Transport(rep, a5, a7, opt_.maxTravel, &touched) && g.Judge(unjudged)) {
+      if (Transport(rep, a5, a7, innerTravel, &touched) && g.Judge(unjudged)) {
         g.Keep(touched);
         ++rep.splitAbsorptions;
         return true;

@@ -130,6 +130,15 @@ struct ReductionOptions {
                                         ///< counts (0.9.4): at 12, bunny00 gave up 6 regions and knot1 / mushroom /
                                         ///< elephant kept 54 / 65 / 136 irregular vertices, against 54 / 59 / 128
   double minSweepGainPercent = 1;       ///< default 1: stop when a pass removes no more than this share
+  double farMeetingReach = 1.5;         ///< default 1.5 (not a filter parameter): after the sweeps, an interior
+                                        ///< irregular vertex with no partner within maxTravel edges but one within
+                                        ///< this x maxTravel gets one more turn, a far meeting (AutomaticReduction::
+                                        ///< FarMeetings); 0: none. bunny00 / knot1 / elephant at 20K (native bench):
+                                        ///< the partners of the far meetings kept lay 13-19 edges away (one at 21)
+  double farMeetingTravel = 2;          ///< default 2: ... whose split-and-absorb walks up to this x maxTravel
+                                        ///< edges and transports the pairs it generates as far: with the pairs
+                                        ///< transported only maxTravel, no far meeting was kept (knot1: 0 of 33);
+                                        ///< at 1.5 x, 4 / 4 / 3 instead of 6 / 6 / 5 (bunny00 / knot1 / elephant)
   RelaxMode finalRelax = RelaxMode::Local;  ///< default Local: final relaxation of the whole mesh: local sweeps,
                                             ///< or a global solve (eq. 5) followed by local sweeps
   int globalRelaxRounds = 3;            ///< default 3: solve-and-project rounds of the final global relaxation
@@ -195,6 +204,8 @@ struct ReductionReport {
   int pairSteps = 0;          ///< pair steps of those transports
   int splitAbsorptions = 0;   ///< stretched dislocations split into two pairs that were both cancelled
   int partialAbsorptions = 0; ///< split-and-absorbs kept part way, for what they had already removed
+  int farMeetings = 0;        ///< far meetings tried (ReductionOptions::farMeetingReach)
+  int farMeetingsKept = 0;    ///< ... and kept (each a transport or split-and-absorb that cancelled)
                               ///< (partialAbsorption)
   int undone = 0;             ///< edits undone (angle, Hausdorff or fold), not counting those inside a
                               ///< split-and-absorb that was undone as a whole
