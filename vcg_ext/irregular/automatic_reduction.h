@@ -257,14 +257,15 @@ class AutomaticReduction {
     const int far = std::max(reach, int(std::lround(opt_.farMeetingTravel * opt_.maxTravel)));
     std::vector<int> candidates;
     {
-      LeftoverOptions nearOpt, farOpt;
-      nearOpt.reach = opt_.maxTravel;
-      farOpt.reach = reach;
-      LeftoverAnalysis<MeshType> nearby(m_, nearOpt), within(m_, farOpt);
+      LeftoverOptions lo;
+      lo.reach = reach;
+      LeftoverAnalysis<MeshType> within(m_, lo);
       for (size_t i = 0; i < m_.vert.size(); ++i) {
         const int v = int(i);
         if (!state_.IsInteriorIrregular(v) || state_.Frozen(v) || state_.GivenUp(v)) continue;
-        if (nearby.PartnerOf(v) < 0 && within.PartnerOf(v) >= 0) candidates.push_back(v);
+        // the nearest partner (a breadth-first search): within the reach, beyond the travel
+        int distance = -1;
+        if (within.PartnerOf(v, &distance) >= 0 && distance > opt_.maxTravel) candidates.push_back(v);
       }
     }
     for (size_t i = 0; i < candidates.size(); ++i) {
@@ -275,9 +276,9 @@ class AutomaticReduction {
       if (!state_.IsInteriorIrregular(v) || state_.Frozen(v)) continue;
       ++rep.farMeetings;
       state_.BeginTurn(v);
-      bool kept = cancel_.CancelAround(rep, v);
-      if (!kept && !state_.TurnExhausted() && ed_.Valence(v) == 5) kept = transport_.Transport(rep, v, far);
-      if (!kept && !state_.TurnExhausted() && transport_.Isolated(v)) kept = transport_.SplitAndAbsorb(rep, v, far, far);
+      // a turn without the repeated-failure check (every candidate failed at the shorter travel)
+      const bool kept =
+          cancel_.CancelAround(rep, v) || (!state_.TurnExhausted() && TravelStrategies(rep, v, far, far, far));
       state_.EndTurn();
       if (kept) ++rep.farMeetingsKept;
       else state_.Tried(v);  // a leftover reason of "no route" (or budget), not "untried"
@@ -302,11 +303,18 @@ class AutomaticReduction {
     // farther cannot. (With travel as the radius, the triceratops kept 186 instead of 180;
     // undone edits leave no stamp, ReductionState::Kept.)
     if (travel == 0 || state_.UnchangedSinceFailure(v, 2 * travel) || state_.TurnExhausted()) return false;
-    if (ed_.Valence(v) == 5 && transport_.Transport(rep, v, travel)) return true;
-    if (state_.TurnExhausted()) return false;
-    if (transport_.Isolated(v) && transport_.SplitAndAbsorb(rep, v, std::max(2, travel))) return true;
+    if (TravelStrategies(rep, v, travel, std::max(2, travel), 0)) return true;
     state_.Failed(v);
     return false;
+  }
+
+  /// The travel strategies of a turn at v: a 5-7 pair's transport (up to `travel` toward its
+  /// targets), then an isolated v5 / v7's split-and-absorb (a partner within `radius`, its
+  /// generated pairs transported innerTravel; 0: maxTravel). True if an edit was kept.
+  bool TravelStrategies(ReductionReport& rep, int v, int travel, int radius, int innerTravel) {
+    if (ed_.Valence(v) == 5 && transport_.Transport(rep, v, travel)) return true;
+    if (state_.TurnExhausted()) return false;
+    return transport_.Isolated(v) && transport_.SplitAndAbsorb(rep, v, radius, innerTravel);
   }
 
   /// opt with maxTravel and glideTravel scaled to m's resolution: a mesh finer than

@@ -204,9 +204,9 @@ struct ReductionReport {
   int pairSteps = 0;          ///< pair steps of those transports
   int splitAbsorptions = 0;   ///< stretched dislocations split into two pairs that were both cancelled
   int partialAbsorptions = 0; ///< split-and-absorbs kept part way, for what they had already removed
+                              ///< (partialAbsorption)
   int farMeetings = 0;        ///< far meetings tried (ReductionOptions::farMeetingReach)
   int farMeetingsKept = 0;    ///< ... and kept (each a transport or split-and-absorb that cancelled)
-                              ///< (partialAbsorption)
   int undone = 0;             ///< edits undone (angle, Hausdorff or fold), not counting those inside a
                               ///< split-and-absorb that was undone as a whole
   // The guard's refusals by reason count every refusal, those inside an undone
