@@ -260,6 +260,22 @@ TEST(LeftoverReasons, ReducedBunnyCountsAddUpAndTheEarTipIsACap) {
     EXPECT_GT(v.curvature, M_PI / 6);
   }
   EXPECT_GE(tipFives, 1);
+  // One analysis remembers which vertices are irregular and the charges of their clusters
+  // from vertex to vertex: each answer is the one a fresh analysis gives for that vertex alone.
+  LeftoverAnalysis<TMesh> shared(m, LeftoverOptions());
+  int withPartner = 0;
+  for (auto& v : r.vertices) {
+    const LeftoverVertex a = shared.ExplainVertex(v.vertex);
+    const LeftoverVertex b = LeftoverAnalysis<TMesh>(m, LeftoverOptions()).ExplainVertex(v.vertex);
+    EXPECT_EQ(a.partner, b.partner) << v.vertex;
+    EXPECT_EQ(a.partnerDistance, b.partnerDistance) << v.vertex;
+    EXPECT_EQ(a.nearestIrregular, b.nearestIrregular) << v.vertex;
+    EXPECT_EQ(a.flags, b.flags) << v.vertex;
+    EXPECT_EQ(a.reason, v.reason) << v.vertex;
+    withPartner += a.partner >= 0;
+  }
+  EXPECT_GT(withPartner, 0);
+  EXPECT_LT(withPartner, r.total);  // both answers occur
   // the plan for what is left: every meeting uses sites of the right kinds
   DislocationAnalysis<TMesh> da(m);
   MeetingPlan plan = da.Plan();

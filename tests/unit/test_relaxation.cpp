@@ -557,3 +557,37 @@ TEST(Relaxation, MoveHurtsAgreesWithMeasuringTheAnglesBeforeAndAfter) {
   EXPECT_GT(under30, 100);
   std::printf("before %.1f degrees; %d kept, %d hurt, %d under 30 degrees after\n", before, kept, hurts, under30);
 }
+
+// AnyWithin answers "does a vertex within k edges satisfy pred" as a scan of KRing would,
+// asks pred about no vertex outside the ring, and stops at the first vertex that satisfies it.
+TEST(Relaxation, AnyWithinAgreesWithKRingAndStopsAtTheFirstHit) {
+  TMesh m;
+  test::HexPatch(m, 6);
+  test::UpdateTopology(m);
+  std::mt19937 rng(11);
+  int hits = 0, misses = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    const int v = int(rng() % m.vert.size());
+    const int k = int(rng() % 5);
+    std::vector<char> marked(m.vert.size(), 0);
+    const int nMarked = int(rng() % 4);
+    for (int i = 0; i < nMarked; ++i) marked[rng() % m.vert.size()] = 1;
+    const std::vector<int> ring = KRing(m, {v}, k);
+    bool expected = false;
+    for (int x : ring) expected = expected || marked[size_t(x)];
+    std::vector<int> asked;
+    const bool got = AnyWithin(m, v, k, [&](int x) {
+      asked.push_back(x);
+      return marked[size_t(x)] != 0;
+    });
+    ASSERT_EQ(got, expected) << "v " << v << ", k " << k;
+    for (int x : asked) ASSERT_TRUE(std::binary_search(ring.begin(), ring.end(), x)) << x << " is outside the ring";
+    ASSERT_FALSE(asked.empty());
+    for (size_t i = 0; i + 1 < asked.size(); ++i) ASSERT_FALSE(marked[size_t(asked[i])]) << "asked on after a hit";
+    if (!got) ASSERT_EQ(asked.size(), ring.size());  // a miss asks about the whole ring, once each
+    hits += got;
+    misses += !got;
+  }
+  EXPECT_GT(hits, 20);
+  EXPECT_GT(misses, 20);
+}

@@ -436,12 +436,18 @@ class DislocationAnalysis {
   /// The connected cluster of interior irregular vertices containing v (adjacency), at most
   /// `bound` vertices; sorted.
   std::vector<int> ClusterOf(int v, int bound = 64) {
+    return ClusterOf(v, bound, [this](int w) { return InteriorIrregular(w); });
+  }
+  /// The same, with `irregular(w)` telling whether w is an interior irregular vertex (e.g. a
+  /// caller's memo of InteriorIrregular).
+  template <class IsIrregular>
+  std::vector<int> ClusterOf(int v, int bound, IsIrregular irregular) {
     std::vector<int> c{v};
     std::unordered_set<int> seen{v};
     for (size_t i = 0; i < c.size() && c.size() < size_t(bound); ++i)
       for (VertexType* n : StarOf<MeshType>(V(c[i])).neighbors) {
         const int w = Index(n);
-        if (seen.insert(w).second && InteriorIrregular(w)) c.push_back(w);
+        if (seen.insert(w).second && irregular(w)) c.push_back(w);
       }
     std::sort(c.begin(), c.end());
     return c;

@@ -264,9 +264,7 @@ class ReductionState {
   bool UnchangedSinceFailure(int v, int radius) {
     const long failed = StampOf(failedAt_, v);
     if (failed < 0) return false;
-    for (int x : KRing(m_, {v}, radius))
-      if (StampOf(editedAt_, x) > failed) return false;
-    return true;
+    return !AnyWithin(m_, v, radius, [&](int x) { return StampOf(editedAt_, x) > failed; });
   }
 
   // ------------------------------------------------------------ bounded effort per region
@@ -301,11 +299,11 @@ class ReductionState {
   bool GivenUp(int v) {
     auto it = effort_.find(v);
     if (it == effort_.end() || it->second.givenUpAt < 0) return false;
-    for (int x : KRing(m_, {v}, kRegionRings))
-      if (StampOf(editedAt_, x) > it->second.givenUpAt) {
-        effort_.erase(it);
-        return false;
-      }
+    const long givenUpAt = it->second.givenUpAt;
+    if (AnyWithin(m_, v, kRegionRings, [&](int x) { return StampOf(editedAt_, x) > givenUpAt; })) {
+      effort_.erase(it);
+      return false;
+    }
     return true;
   }
   /// The regions given up (run-time indices), with their refusals by reason; irregularAround

@@ -195,6 +195,31 @@ std::vector<int> KRing(MeshType& m, const std::vector<int>& seeds, int k) {
   return out;
 }
 
+/// True if pred(x) holds for a vertex x within k edges of v: KRing's breadth-first walk,
+/// stopping at the first such x, with neither KRing's sorted list nor its allocation of the
+/// ring (the driver's "unchanged since" checks walk 24 rings, about 1800 vertices, per turn).
+template <class MeshType, class Pred>
+bool AnyWithin(MeshType& m, int v, int k, Pred pred) {
+  static thread_local StampSet seen;  // one per thread: pred must not call AnyWithin
+  static thread_local std::vector<int> frontier, next;
+  seen.Begin(m.vert.size());
+  seen.Insert(size_t(v));
+  if (pred(v)) return true;
+  frontier.assign(1, v);
+  for (int r = 0; r < k && !frontier.empty(); ++r) {
+    next.clear();
+    for (int x : frontier)
+      for (auto n : StarOf<MeshType>(&m.vert[size_t(x)]).neighbors) {
+        const int ni = int(vcg::tri::Index(m, n));
+        if (!seen.Insert(size_t(ni))) continue;
+        if (pred(ni)) return true;
+        next.push_back(ni);
+      }
+    frontier.swap(next);
+  }
+  return false;
+}
+
 /// 1 for vertices touching an edge whose dihedral angle exceeds angleDeg (a sharp crease).
 template <class MeshType>
 std::vector<char> CreaseVertices(MeshType& m, double angleDeg) {
