@@ -453,9 +453,11 @@ class DislocationAnalysis {
     return c;
   }
 
-  int ClusterCharge(int v) {
+  int ClusterCharge(int v) { return ChargeOf(ClusterOf(v)); }
+  /// The summed charge (6 - valence) of the given vertices.
+  int ChargeOf(const std::vector<int>& vertices) {
     int q = 0;
-    for (int x : ClusterOf(v)) q += 6 - StarOf<MeshType>(V(x)).Valence();
+    for (int x : vertices) q += 6 - StarOf<MeshType>(V(x)).Valence();
     return q;
   }
 

@@ -280,7 +280,6 @@ class LeftoverAnalysis {
   /// Vertices within k edges of v with their distance.
   std::unordered_map<int, int> Rings(int v, int k) { return DislocationAnalysis<MeshType>(m_).Distances({v}, k); }
 
-  int Charge(int x) { return 6 - irregular::Valence<MeshType>(V(x)); }
   /// As DislocationAnalysis::InteriorIrregular, memoised per vertex (kind_): the partner
   /// searches of one analysis visit the same vertices many times (the man at 20K, 2041
   /// leftovers each searched 18 rings deep: the searches were a tenth of the whole run).
@@ -295,8 +294,7 @@ class LeftoverAnalysis {
   int ClusterCharge(int x) {
     auto it = clusterCharge_.find(x);
     if (it != clusterCharge_.end()) return it->second;
-    int q = 0;
-    for (int y : ClusterOf(x)) q += Charge(y);
+    const int q = DislocationAnalysis<MeshType>(m_).ChargeOf(ClusterOf(x));
     clusterCharge_.emplace(x, q);
     return q;
   }
@@ -309,8 +307,7 @@ class LeftoverAnalysis {
   void NearestPartner(int v, int* partner, int* distance, int* nearest) {
     std::vector<int> cluster = ClusterOf(v);
     std::unordered_set<int> own(cluster.begin(), cluster.end());
-    int q = 0;
-    for (int x : cluster) q += Charge(x);
+    const int q = DislocationAnalysis<MeshType>(m_).ChargeOf(cluster);
     std::unordered_map<int, int> d;
     std::vector<int> queue;
     for (int x : cluster) d.emplace(x, 0), queue.push_back(x);

@@ -172,52 +172,64 @@ struct RelaxReport {
   int backtracks = 0;  ///< global: step lengths tried and refused (energy not lower)
 };
 
-/// Vertices within k edges of the seeds (k = 0: the seeds). O(size of the ring).
+namespace relax_detail {
+/// The scratch of WalkRings, one per thread, shared by every instantiation.
+struct RingWalkScratch {
+  StampSet seen;
+  std::vector<int> frontier, next;
+};
+inline RingWalkScratch& RingWalk() {
+  static thread_local RingWalkScratch s;
+  return s;
+}
+}  // namespace relax_detail
+
+/// Breadth-first walk over the vertices within k edges of the seeds [first, last): visit(x)
+/// once on each, the seeds first, then ring by ring in the order the stars give them; the walk
+/// stops as soon as visit returns true. True if it stopped so. O(size of the ring walked).
+/// visit must not start another walk (KRing, AnyWithin): the scratch is shared.
+template <class MeshType, class Visit>
+bool WalkRings(MeshType& m, const int* first, const int* last, int k, Visit visit) {
+  relax_detail::RingWalkScratch& w = relax_detail::RingWalk();
+  w.seen.Begin(m.vert.size());
+  w.frontier.clear();
+  for (const int* v = first; v != last; ++v) {
+    if (!w.seen.Insert(size_t(*v))) continue;
+    if (visit(*v)) return true;
+    w.frontier.push_back(*v);
+  }
+  for (int r = 0; r < k && !w.frontier.empty(); ++r) {
+    w.next.clear();
+    for (int x : w.frontier)
+      for (auto n : StarOf<MeshType>(&m.vert[size_t(x)]).neighbors) {
+        const int ni = int(vcg::tri::Index(m, n));
+        if (!w.seen.Insert(size_t(ni))) continue;
+        if (visit(ni)) return true;
+        w.next.push_back(ni);
+      }
+    w.frontier.swap(w.next);
+  }
+  return false;
+}
+
+/// Vertices within k edges of the seeds (k = 0: the seeds), sorted. O(size of the ring).
 template <class MeshType>
 std::vector<int> KRing(MeshType& m, const std::vector<int>& seeds, int k) {
-  static thread_local StampSet seen;  // one per thread: KRing never calls itself
-  seen.Begin(m.vert.size());
-  std::vector<int> out, frontier;
-  for (int v : seeds)
-    if (seen.Insert(size_t(v))) frontier.push_back(v);
-  out = frontier;
-  for (int r = 0; r < k; ++r) {
-    std::vector<int> next;
-    for (int v : frontier)
-      for (auto n : StarOf<MeshType>(&m.vert[size_t(v)]).neighbors) {
-        const int ni = int(vcg::tri::Index(m, n));
-        if (seen.Insert(size_t(ni))) next.push_back(ni);
-      }
-    out.insert(out.end(), next.begin(), next.end());
-    frontier.swap(next);
-  }
+  std::vector<int> out;
+  WalkRings(m, seeds.data(), seeds.data() + seeds.size(), k, [&](int x) {
+    out.push_back(x);
+    return false;
+  });
   std::sort(out.begin(), out.end());
   return out;
 }
 
-/// True if pred(x) holds for a vertex x within k edges of v: KRing's breadth-first walk,
-/// stopping at the first such x, with neither KRing's sorted list nor its allocation of the
-/// ring (the driver's "unchanged since" checks walk 24 rings, about 1800 vertices, per turn).
+/// True if pred(x) holds for a vertex x within k edges of v: the walk stops at the first such
+/// x and builds no list of the ring (the driver's "unchanged since" checks walk 24 rings,
+/// about 1800 vertices, per turn).
 template <class MeshType, class Pred>
 bool AnyWithin(MeshType& m, int v, int k, Pred pred) {
-  static thread_local StampSet seen;  // one per thread: pred must not call AnyWithin
-  static thread_local std::vector<int> frontier, next;
-  seen.Begin(m.vert.size());
-  seen.Insert(size_t(v));
-  if (pred(v)) return true;
-  frontier.assign(1, v);
-  for (int r = 0; r < k && !frontier.empty(); ++r) {
-    next.clear();
-    for (int x : frontier)
-      for (auto n : StarOf<MeshType>(&m.vert[size_t(x)]).neighbors) {
-        const int ni = int(vcg::tri::Index(m, n));
-        if (!seen.Insert(size_t(ni))) continue;
-        if (pred(ni)) return true;
-        next.push_back(ni);
-      }
-    frontier.swap(next);
-  }
-  return false;
+  return WalkRings(m, &v, &v + 1, k, pred);
 }
 
 /// 1 for vertices touching an edge whose dihedral angle exceeds angleDeg (a sharp crease).
