@@ -359,6 +359,110 @@ TEST(MemoryDistanceGrid, SameDistancesAsASurfaceProjectorCopyToTheBit) {
   EXPECT_EQ(HausdorffPercent(a, SurfaceProjector(b)), HausdorffPercentByProjectorCopy(a, SurfaceProjector(b)));
 }
 
+TEST(SurfaceProjectorHints, ClosestFromFindsClosestsDistanceWhateverTheHint) {
+  TMesh a;
+  ASSERT_TRUE(Remeshed(a, "bunny00.off", 3000)) << "corpus mesh missing (run scripts/setup.sh)";
+  SurfaceProjector sp(a);
+  const auto& faces = sp.Mesh().face;
+  const float diag = sp.Diagonal();
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(-1, 1);
+  std::uniform_int_distribution<size_t> anyFace(0, faces.size() - 1);
+  int searched = 0, none = 0;
+  for (int k = 0; k < 4000; ++k) {
+    const auto& v = a.vert[size_t(k) % a.vert.size()];
+    // near the surface (a relaxed vertex's step, up to 2% of the diagonal) and, every tenth, far
+    const float r = (k % 10 == 0 ? 0.3f : 0.02f) * diag;
+    const vcg::Point3f p = vcg::Point3f::Construct(v.cP()) + vcg::Point3f(u(rng), u(rng), u(rng)) * r;
+    const proj_detail::PFace* truth = nullptr;
+    float d = 0;
+    const vcg::Point3f q = sp.Closest(p, &d, nullptr, 0, &truth);
+    ASSERT_NE(truth, nullptr);
+    // hints: none, the closest face itself, a random (mostly far) face, and the last answer's face
+    const proj_detail::PFace* hints[3] = {nullptr, truth, &faces[anyFace(rng)]};
+    for (const proj_detail::PFace* h : hints) {
+      float dh = -1;
+      const proj_detail::PFace* fh = nullptr;
+      const vcg::Point3f qh = sp.ClosestFrom(h, p, &dh, nullptr, 0, &fh);
+      ASSERT_NE(fh, nullptr);
+      // the same distance (ties between faces over a shared edge may differ in the last bits)
+      ASSERT_NEAR(dh, d, 1e-6f * diag) << "point " << k;
+      ASSERT_LE((qh - q).Norm(), 1e-5f * diag) << "point " << k;
+      // and the face it names is that far
+      float df = diag;
+      vcg::Point3f qf;
+      ASSERT_TRUE(vcg::face::PointDistanceBase(*fh, p, df, qf));
+      ASSERT_NEAR(df, dh, 1e-6f * diag);
+      ++searched;
+    }
+    // a bound under the distance: nothing found, p itself back, as Closest answers
+    if (d > 1e-4f * diag) {
+      float db = -1;
+      const proj_detail::PFace* fb = &faces[0];
+      const vcg::Point3f pb = sp.ClosestFrom(truth, p, &db, nullptr, 0.5f * d, &fb);
+      ASSERT_EQ(fb, nullptr);
+      ASSERT_EQ(db, 0.5f * d);
+      ASSERT_EQ(pb, p);
+      ++none;
+    }
+  }
+  EXPECT_EQ(searched, 12000);
+  EXPECT_GT(none, 1000);
+  // per-vertex hints: the same distances, round after round of small moves
+  for (int round = 0; round < 3; ++round)
+    for (size_t i = 0; i < a.vert.size(); i += 7) {
+      const vcg::Point3f p = vcg::Point3f::Construct(a.vert[i].cP()) + vcg::Point3f(u(rng), u(rng), u(rng)) * (0.005f * diag);
+      float d = 0;
+      const vcg::Point3f q = sp.Closest(p, &d);
+      const vcg::Point3f qv = sp.ClosestForVertex(i, p);
+      ASSERT_NEAR((qv - p).Norm(), d, 1e-5f * diag) << "vertex " << i << " round " << round;
+      ASSERT_LE((qv - q).Norm(), 1e-5f * diag);
+      // the hint it keeps is the face of that answer
+      const proj_detail::PFace* h = sp.VertexHint(i);
+      ASSERT_NE(h, nullptr);
+      float dh = diag;
+      vcg::Point3f qh;
+      ASSERT_TRUE(vcg::face::PointDistanceBase(*h, p, dh, qh));
+      ASSERT_NEAR(dh, d, 1e-5f * diag);
+    }
+  EXPECT_EQ(sp.VertexHint(1), nullptr);  // never asked for
+  EXPECT_EQ(sp.VertexHint(size_t(1) << 40), nullptr);
+}
+
+TEST(SurfaceProjectorHints, BoxedPointDistanceAgreesWithVcgsTest) {
+  TMesh a;
+  ASSERT_TRUE(Remeshed(a, "bunny00.off", 1500)) << "corpus mesh missing (run scripts/setup.sh)";
+  SurfaceProjector sp(a);
+  const auto& faces = sp.Mesh().face;
+  const float diag = sp.Diagonal();
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(-1, 1);
+  int refused = 0, kept = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const auto& f = faces[size_t(k) % faces.size()];
+    const auto& g = faces[size_t(k * 7919) % faces.size()];
+    // near g, measured against f (mostly elsewhere) and against g
+    const vcg::Point3f p = (g.cP(0) + g.cP(1) + g.cP(2)) / 3.f + vcg::Point3f(u(rng), u(rng), u(rng)) * (0.02f * diag);
+    const float bound = (0.5f + u(rng)) * 0.02f * diag;
+    for (const auto* h : {&f, &g}) {
+      float d0 = bound, d1 = bound;
+      vcg::Point3f q0, q1;
+      const bool vcgSays = vcg::face::PointDistanceBase(*h, p, d0, q0);
+      const bool boxed = SurfaceProjector::BoxedPointDistance(*h, p, d1, q1);
+      ASSERT_EQ(boxed, vcgSays) << "sample " << k;
+      ASSERT_EQ(d1, d0);
+      if (boxed) {
+        ASSERT_EQ(q1, q0);
+        ++kept;
+      } else {
+        ++refused;
+      }
+    }
+  }
+  EXPECT_GT(kept, 1000);
+  EXPECT_GT(refused, 10000);
+}
+
 TEST(MemoryDistanceGrid, IsSmallerThanAProjectorCopy) {
   TMesh m;
   ASSERT_TRUE(Remeshed(m, "bunny00.off", 5000)) << "corpus mesh missing (run scripts/setup.sh)";

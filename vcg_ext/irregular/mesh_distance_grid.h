@@ -270,6 +270,12 @@ class MeshDistanceGrid {
   bool Measure(uint32_t t, const vcg::Point3f& p, float& d) const {
     FaceView view;
     for (int z = 0; z < 3; ++z) view.v[z].p = Corner3f(t, z);
+    // a face whose box is farther than d cannot come under it: skip vcg's test and the normal
+    // (the same answer; most faces of a cell lie beside p)
+    for (int a = 0; a < 3; ++a) {
+      if (p[a] + d < std::min(view.v[0].p[a], std::min(view.v[1].p[a], view.v[2].p[a]))) return false;
+      if (p[a] - d > std::max(view.v[0].p[a], std::max(view.v[1].p[a], view.v[2].p[a]))) return false;
+    }
     // UpdateNormal::PerFaceNormalized: the cross product of the edges from corner 0, normalized
     view.n = (view.cP(1) - view.cP(0)) ^ (view.cP(2) - view.cP(0));
     view.n.Normalize();

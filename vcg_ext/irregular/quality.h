@@ -94,7 +94,7 @@ double OneSidedHausdorff(const MeshType& a, const SurfaceProjector& to) {
     if (mx > 0 && SurfaceProjector::NearFace(hint, p, float(mx))) return mx;
     float d = 0;
     const proj_detail::PFace* f = nullptr;
-    to.Closest(p, &d, nullptr, 0, &f);
+    to.ClosestFrom(hint, p, &d, nullptr, 0, &f);
     if (f) hint = f;
     return double(d);
   });

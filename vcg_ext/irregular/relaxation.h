@@ -420,7 +420,8 @@ RelaxReport LocalRelax(MeshType& m, const std::vector<int>& region, const Surfac
         ++rep.rejected;
         continue;
       }
-      if (opt.reproject && original) p = CoordType::Construct(original->Closest(vcg::Point3f::Construct(p)));
+      if (opt.reproject && original)
+        p = CoordType::Construct(original->ClosestForVertex(size_t(v), vcg::Point3f::Construct(p)));
       if (relax_detail::MoveHurts<MeshType>(st, vp, p, opt.minFaceTurnCos)) {
         ++rep.rejected;
         continue;
@@ -817,7 +818,7 @@ RelaxReport GlobalRelax(MeshType& m, const std::vector<int>& region, const Surfa
         if (R.onBoundary[size_t(i)])
           q = opt.boundaryCurve->Closest(q);
         else if (opt.reproject && original)
-          q = CoordType::Construct(original->Closest(vcg::Point3f::Construct(q)));
+          q = CoordType::Construct(original->ClosestForVertex(size_t(R.free[size_t(i)]), vcg::Point3f::Construct(q)));
         const bool finite = std::isfinite(double(q[0])) && std::isfinite(double(q[1])) && std::isfinite(double(q[2]));
         m.vert[size_t(R.free[size_t(i)])].P() = finite ? q : old[size_t(i)];
         sentBack[size_t(i)] = 0;
