@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstring>
+#include <new>
 #include <type_traits>
 
 namespace vcg_ext {
@@ -20,15 +21,20 @@ namespace irregular {
 template <class T, size_t N>
 class SmallVector {
   static_assert(std::is_trivially_copyable<T>::value, "SmallVector holds trivially copyable elements only");
+  static_assert(N > 0, "SmallVector needs inline room for at least one element");
 
  public:
   typedef T value_type;
   typedef T* iterator;
   typedef const T* const_iterator;
 
-  SmallVector() = default;
-  SmallVector(const SmallVector& o) { Assign(o.begin(), o.end()); }
-  SmallVector(SmallVector&& o) noexcept { Steal(o); }
+  // The inline room is raw bytes, not T[N]: a T with default member initializers (Corner's
+  // null face) would otherwise be written N times for every star built, before any use.
+  // data_ always points at the elements (the inline room or the heap), so an access is one
+  // load, not a choice between the two.
+  SmallVector() : data_(Inline()) {}
+  SmallVector(const SmallVector& o) : data_(Inline()) { Assign(o.begin(), o.end()); }
+  SmallVector(SmallVector&& o) noexcept : data_(Inline()) { Steal(o); }
   SmallVector& operator=(const SmallVector& o) {
     if (this != &o) {
       size_ = 0;
@@ -47,40 +53,41 @@ class SmallVector {
 
   size_t size() const { return size_; }
   bool empty() const { return size_ == 0; }
-  T* data() { return heap_ ? heap_ : inline_; }
-  const T* data() const { return heap_ ? heap_ : inline_; }
-  T* begin() { return data(); }
-  T* end() { return data() + size_; }
-  const T* begin() const { return data(); }
-  const T* end() const { return data() + size_; }
-  T& operator[](size_t i) { return data()[i]; }
-  const T& operator[](size_t i) const { return data()[i]; }
-  T& front() { return data()[0]; }
-  const T& front() const { return data()[0]; }
-  T& back() { return data()[size_ - 1]; }
-  const T& back() const { return data()[size_ - 1]; }
+  T* data() { return data_; }
+  const T* data() const { return data_; }
+  T* begin() { return data_; }
+  T* end() { return data_ + size_; }
+  const T* begin() const { return data_; }
+  const T* end() const { return data_ + size_; }
+  T& operator[](size_t i) { return data_[i]; }
+  const T& operator[](size_t i) const { return data_[i]; }
+  T& front() { return data_[0]; }
+  const T& front() const { return data_[0]; }
+  T& back() { return data_[size_ - 1]; }
+  const T& back() const { return data_[size_ - 1]; }
+  size_t capacity() const { return capacity_; }
 
   void reserve(size_t n) {
-    if (n <= Capacity()) return;
-    T* p = new T[n];
-    if (size_) std::memcpy(static_cast<void*>(p), data(), size_ * sizeof(T));
-    delete[] heap_;
-    heap_ = p;
+    if (n <= capacity_) return;
+    T* p = static_cast<T*>(::operator new(n * sizeof(T)));
+    if (size_) std::memcpy(static_cast<void*>(p), data_, size_ * sizeof(T));
+    if (OnHeap()) ::operator delete(data_);
+    data_ = p;
     capacity_ = n;
   }
   void push_back(const T& x) {
-    if (size_ == Capacity()) {
+    if (size_ == capacity_) {
       const T copy = x;  // x may live in this vector
-      reserve(2 * Capacity());
-      data()[size_++] = copy;
+      reserve(2 * capacity_);
+      data_[size_++] = copy;
       return;
     }
-    data()[size_++] = x;
+    data_[size_++] = x;
   }
   void clear() { size_ = 0; }
   void resize(size_t n, const T& x = T()) {
     reserve(n);
-    for (size_t i = size_; i < n; ++i) data()[i] = x;
+    for (size_t i = size_; i < n; ++i) data_[i] = x;
     size_ = n;
   }
   /// Removes [first, last), like std::vector::erase.
@@ -92,32 +99,33 @@ class SmallVector {
   T* erase(T* pos) { return erase(pos, pos + 1); }
 
  private:
-  size_t Capacity() const { return heap_ ? capacity_ : N; }
+  T* Inline() { return reinterpret_cast<T*>(inline_); }
+  bool OnHeap() const { return data_ != reinterpret_cast<const T*>(inline_); }
   void Assign(const T* b, const T* e) {
     reserve(size_t(e - b));
-    if (e != b) std::memcpy(static_cast<void*>(data()), b, size_t(e - b) * sizeof(T));
+    if (e != b) std::memcpy(static_cast<void*>(data_), b, size_t(e - b) * sizeof(T));
     size_ = size_t(e - b);
   }
+  /// Precondition: this holds no heap block (constructed, or just freed).
   void Steal(SmallVector& o) {
-    if (o.heap_) {
-      heap_ = o.heap_, capacity_ = o.capacity_, size_ = o.size_;
-      o.heap_ = nullptr, o.capacity_ = 0, o.size_ = 0;
+    if (o.OnHeap()) {
+      data_ = o.data_, capacity_ = o.capacity_, size_ = o.size_;
+      o.data_ = o.Inline(), o.capacity_ = N, o.size_ = 0;
     } else {
-      heap_ = nullptr, capacity_ = 0;
       Assign(o.begin(), o.end());
       o.size_ = 0;
     }
   }
   void Free() {
-    delete[] heap_;
-    heap_ = nullptr;
-    capacity_ = 0;
+    if (OnHeap()) ::operator delete(data_);
+    data_ = Inline();
+    capacity_ = N;
     size_ = 0;
   }
 
-  T inline_[N];
-  T* heap_ = nullptr;
-  size_t size_ = 0, capacity_ = 0;
+  alignas(T) unsigned char inline_[N * sizeof(T)];
+  T* data_;
+  size_t size_ = 0, capacity_ = N;
 };
 
 }  // namespace irregular
