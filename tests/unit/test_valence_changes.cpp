@@ -1,5 +1,6 @@
 // ValenceChanges (valence_changes.h) behaves as the std::map<int, int> it replaces in
-// AtomicOperations::Candidates: same order, same insert and operator[] semantics.
+// AtomicOperations (Candidates, predictions, outcomes): same order, same insert, operator[],
+// find and erase semantics, inline up to kInline entries and on the heap beyond.
 #include <gtest/gtest.h>
 
 #include <map>
@@ -40,30 +41,55 @@ TEST(ValenceChanges, RandomOperationsMatchStdMap) {
   for (int round = 0; round < 2000; ++round) {
     ValenceChanges c;
     std::map<int, int> m;
-    for (int k = 0; k < 12; ++k) {
-      const int key = int(rng() % 9) - 1, value = int(rng() % 10);
-      switch (rng() % 3) {
-        case 0:
-          if (m.size() < ValenceChanges::kCapacity || m.count(key)) EXPECT_EQ(c.Insert(key, value), m.insert({key, value}).second);
-          break;
+    // keys from a range wider than the inline room, so that maps cross it both ways
+    for (int k = 0; k < 40; ++k) {
+      const int key = int(rng() % 21) - 1, value = int(rng() % 10);
+      switch (rng() % 4) {
+        case 0: EXPECT_EQ(c.Insert(key, value), m.insert({key, value}).second); break;
         case 1:
-          if (m.size() < ValenceChanges::kCapacity || m.count(key)) {
-            c[key] = value;
-            m[key] = value;
-          }
+          c[key] = value;
+          m[key] = value;
           break;
+        case 2: {
+          auto it = m.find(key);
+          auto ct = c.find(key);
+          ASSERT_EQ(ct == c.end(), it == m.end());
+          if (it != m.end()) EXPECT_EQ(ct->second, it->second);
+          break;
+        }
         default:
           c.erase(key);
           m.erase(key);
       }
       ASSERT_EQ(c.ToMap(), m) << "round " << round << " op " << k;
+      ASSERT_EQ(c.size(), m.size());
+      const ValenceChanges copy = c;  // copies compare equal, entry by entry
+      ASSERT_TRUE(copy == c);
     }
   }
 }
 
-TEST(ValenceChanges, RefusesAnEntryPastItsCapacity) {
+TEST(ValenceChanges, GrowsPastItsInlineRoomInOrder) {
   ValenceChanges c;
-  for (int k = 0; k < int(ValenceChanges::kCapacity); ++k) c.Insert(k, 6);
-  EXPECT_THROW(c.Insert(99, 5), std::length_error);
-  EXPECT_FALSE(c.Insert(0, 5));  // a key already in needs no room
+  const int n = int(ValenceChanges::kInline) * 3;
+  for (int k = n - 1; k >= 0; --k) EXPECT_TRUE(c.Insert(2 * k, k));  // descending: every insert shifts
+  EXPECT_FALSE(c.Insert(0, 5));  // a key already in keeps its value
+  ASSERT_EQ(c.size(), size_t(n));
+  int expect = 0;
+  for (auto& kv : c) {
+    EXPECT_EQ(kv.first, 2 * expect);
+    EXPECT_EQ(kv.second, expect);
+    ++expect;
+  }
+  ValenceChanges moved = std::move(c);
+  EXPECT_EQ(moved.size(), size_t(n));
+  EXPECT_EQ(moved.at(2 * (n - 1)), n - 1);
+  ValenceChanges other = {{1, 5}};
+  EXPECT_FALSE(other == moved);
+  other = moved;
+  EXPECT_TRUE(other == moved);
+  other[1] = 7;  // a new key in the middle
+  EXPECT_EQ(other.size(), size_t(n) + 1);
+  EXPECT_EQ(other.at(1), 7);
+  EXPECT_FALSE(other == moved);
 }

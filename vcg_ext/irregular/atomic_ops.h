@@ -76,7 +76,7 @@ struct AtomicRoles {
 struct AtomicOutcome : AtomicRoles {
   Result result = Result::Fail("not applied");
   std::string description;              ///< e.g. "flip edge (12, 40)"
-  std::map<int, int> changes;           ///< vertex index -> valence after (deleted: 0)
+  ValenceChanges changes;               ///< vertex index -> valence after (deleted: 0)
   std::vector<int> irregular;           ///< the irregular vertices the operation leaves (the
                                         ///< moved pair, the generated quadruple, ...)
   explicit operator bool() const { return result.ok; }
@@ -90,7 +90,7 @@ struct AtomicPrediction : AtomicRoles {
   Result result = Result::Fail("not predicted");
   bool geometryChecked = false;
   std::string description;
-  std::map<int, int> changes;   ///< vertex index -> valence after (deleted: 0)
+  ValenceChanges changes;       ///< vertex index -> valence after (deleted: 0)
   std::vector<int> irregular;   ///< as AtomicOutcome::irregular will be
   // Fig. 7 configuration, for single-vertex moves:
   AtomicVia via = AtomicVia::Any;
@@ -109,6 +109,13 @@ class AtomicOperations {
   typedef typename Editor::VertexType VertexType;
 
   explicit AtomicOperations(Editor& ed) : ed_(ed) {}
+
+  /// Descriptions ("flip edge (12, 40)") and refusal reasons are written for people. A caller
+  /// that reads neither turns them off: predictions and outcomes are then the same except that
+  /// descriptions and reasons are empty. Automatic Reduction does (its searches make about a
+  /// million predictions on bunny00, and their text was about 3% of its instructions).
+  void SetDescribing(bool on) { describe_ = on; }
+  bool Describing() const { return describe_; }
 
   /// Neighbour k of v counter-clockwise from reference neighbour ref (-1: the neighbour with
   /// the smallest index). -1 if v has no such neighbour.
@@ -139,9 +146,9 @@ class AtomicOperations {
     Result pre = RequireInterior({v5, v7});
     if (!pre) return Refuse(out, pre.reason);
     if (ed_.Valence(v5) != 5 || ed_.Valence(v7) != 7)
-      return Refuse(out, Str("a 5-7 pair needs a vertex of valence 5 and one of valence 7; vertices ", v5, " and ", v7,
+      return Refuse(out, Say("a 5-7 pair needs a vertex of valence 5 and one of valence 7; vertices ", v5, " and ", v7,
                              " have valences ", ed_.Valence(v5), " and ", ed_.Valence(v7)));
-    if (!ed_.Adjacent(v5, v7)) return Refuse(out, Str("vertices ", v5, " and ", v7, " are not adjacent"));
+    if (!ed_.Adjacent(v5, v7)) return Refuse(out, Say("vertices ", v5, " and ", v7, " are not adjacent"));
     if (dir < 0 || dir > 5) return Refuse(out, "the direction must be 0..5");
     auto n = [&](int k) { return NeighbourFrom(v5, v7, k); };
     auto m = [&](int k) { return NeighbourFrom(v7, v5, k); };
@@ -152,7 +159,7 @@ class AtomicOperations {
       const int z = o[0] == v5 ? o[1] : o[0];
       Result reg = RequireRegular({y, z});
       if (!reg) return Refuse(out, reg.reason);
-      out.description = Str("flip edge (", v7, ", ", y, ")");
+      out.description = Say("flip edge (", v7, ", ", y, ")");
       out.steps = {StepFlip(v7, y)};
       out.changes = {{v5, 6}, {v7, 6}, {y, 5}, {z, 7}};
       out.pair5 = y, out.pair7 = z;
@@ -160,7 +167,7 @@ class AtomicOperations {
       const int x = n(dir == 2 ? 1 : 4), c = n(dir);
       Result reg = RequireRegular({x, c});
       if (!reg) return Refuse(out, reg.reason);
-      out.description = Str("collapse vertex ", x, " into ", v5);
+      out.description = Say("collapse vertex ", x, " into ", v5);
       out.steps = {StepCollapse(x, v5)};
       out.changes = {{v5, 7}, {v7, 6}, {c, 5}, {x, 0}};
       out.pair5 = c, out.pair7 = v5;
@@ -170,7 +177,7 @@ class AtomicOperations {
       Result reg = RequireRegular({b});
       if (!reg) return Refuse(out, reg.reason);
       const int created = NextCreated(0);
-      out.description = Str("split vertex ", v7, " along edges (", v7, ", ", v5, ") and (", v7, ", ", b, ")");
+      out.description = Say("split vertex ", v7, " along edges (", v7, ", ", v5, ") and (", v7, ", ", b, ")");
       // Split keeps, for the old vertex, the edges from its first to its second argument.
       out.steps = {dir == 0 ? StepSplit(v7, b, v5) : StepSplit(v7, v5, b)};
       out.changes = {{v7, 5}, {created, 6}, {v5, 6}, {b, 7}};
@@ -231,8 +238,8 @@ class AtomicOperations {
     if (!pre) return Refuse(out, pre.reason);
     const int d = ed_.Valence(p);
     if (d != 5 && d != 7)
-      return Refuse(out, Str("vertex ", p, " has valence ", d, "; this operation moves a v5 or a v7"));
-    if (k < 0 || k >= d) return Refuse(out, Str("the direction must be 0..", d - 1, " for a v", d));
+      return Refuse(out, Say("vertex ", p, " has valence ", d, "; this operation moves a v5 or a v7"));
+    if (k < 0 || k >= d) return Refuse(out, Say("the direction must be 0..", d - 1, " for a v", d));
     const int nk = NeighbourFrom(p, ref, k), nk1 = NeighbourFrom(p, ref, k + 1), nkm = NeighbourFrom(p, ref, k - 1);
     if (d == 5) {
       int o[2];
@@ -240,14 +247,14 @@ class AtomicOperations {
       const int z = o[0] == p ? o[1] : o[0];
       Result reg = RequireRegular({nk, nk1, z});
       if (!reg) return Refuse(out, reg.reason);
-      out.description = Str("v5 ", p, " -> ", nk, ", new 5-7 pair (", nk1, ", ", z, "): flip edge (", nk, ", ", nk1, ")");
+      out.description = Say("v5 ", p, " -> ", nk, ", new 5-7 pair (", nk1, ", ", z, "): flip edge (", nk, ", ", nk1, ")");
       out.steps = {StepFlip(nk, nk1)};
       out.changes = {{p, 6}, {nk, 5}, {nk1, 5}, {z, 7}};
       out.moved = nk, out.pair5 = nk1, out.pair7 = z;
     } else {
       Result reg = RequireRegular({nk, nk1, nkm});
       if (!reg) return Refuse(out, reg.reason);
-      out.description = Str("v7 ", p, " -> ", nk1, ", new 5-7 pair (", nk, ", ", nkm, "): flip edge (", p, ", ", nk, ")");
+      out.description = Say("v7 ", p, " -> ", nk1, ", new 5-7 pair (", nk, ", ", nkm, "): flip edge (", p, ", ", nk, ")");
       out.steps = {StepFlip(p, nk)};
       out.changes = {{p, 6}, {nk, 5}, {nkm, 7}, {nk1, 7}};
       out.moved = nk1, out.pair5 = nk, out.pair7 = nkm;
@@ -327,7 +334,7 @@ class AtomicOperations {
           c.moved = n(j), c.pair5 = other, c.pair7 = z;
           c.changes = {{p, 6}, {n(j), 5}, {other, 5}};
           if (z >= 0) c.changes[z] = 7;
-          c.description = Str("v5 ", p, " -> ", n(j), ", new 5-7 pair (", other, ", ", z, "): flip edge (", n(j), ", ",
+          c.description = Say("v5 ", p, " -> ", n(j), ", new 5-7 pair (", other, ", ", z, "): flip edge (", n(j), ", ",
                               other, ")");
           c.result = z < 0 ? Result::Fail("the link edge lies on the boundary") : RequireRegular({n(j), other, z});
           finish(c, j, AtomicVia::Flip, s1 > 0 ? PairSide::Ccw : PairSide::Cw, false);
@@ -339,7 +346,7 @@ class AtomicOperations {
           c.moved = n(j), c.pair5 = five, c.pair7 = p;
           c.changes = {{p, 7}, {x, 0}, {n(j), 5}, {five, 5}};
           c.deleted = {x};
-          c.description = Str("v5 ", p, " -> ", n(j), ", new 5-7 pair (", five, ", ", p, "): collapse vertex ", x,
+          c.description = Say("v5 ", p, " -> ", n(j), ", new 5-7 pair (", five, ", ", p, "): collapse vertex ", x,
                               " into ", p);
           c.result = RequireRegular({n(j), x, five});
           finish(c, j, AtomicVia::Collapse, s1 > 0 ? PairSide::Ccw : PairSide::Cw, false);
@@ -352,9 +359,9 @@ class AtomicOperations {
           c.changes = {{p, 6}, {n(j), 5}, {created, 5}};
           if (q >= 0) c.changes[q] = 7;
           c.created = {created};
-          c.description = Str("v5 ", p, " -> ", n(j), ", new 5-7 pair (new vertex ", created, ", ", q, "): ",
+          c.description = Say("v5 ", p, " -> ", n(j), ", new 5-7 pair (new vertex ", created, ", ", q, "): ",
                               c.steps[0].Describe());
-          c.result = q < 0 ? Result::Fail(Str("vertex ", n(j), " (valence ", ed_.Valence(n(j)),
+          c.result = q < 0 ? Result::Fail(Say("vertex ", n(j), " (valence ", ed_.Valence(n(j)),
                                               ") is in the way: this step needs regular vertices around the v5"))
                            : RequireRegular({n(j), q});
           finish(c, j, AtomicVia::Split, s1 > 0 ? PairSide::Ccw : PairSide::Cw, false);
@@ -366,7 +373,7 @@ class AtomicOperations {
           c.steps = {StepFlip(p, five)};
           c.moved = n(j), c.pair5 = five, c.pair7 = seven;
           c.changes = {{p, 6}, {n(j), 7}, {five, 5}, {seven, 7}};
-          c.description = Str("v7 ", p, " -> ", n(j), ", new 5-7 pair (", five, ", ", seven, "): flip edge (", p, ", ",
+          c.description = Say("v7 ", p, " -> ", n(j), ", new 5-7 pair (", five, ", ", seven, "): flip edge (", p, ", ",
                               five, ")");
           c.result = RequireRegular({n(j), five, seven});
           finish(c, j, AtomicVia::Flip, s1 > 0 ? PairSide::Ccw : PairSide::Cw, false);
@@ -378,7 +385,7 @@ class AtomicOperations {
           c.moved = n(j), c.pair5 = p, c.pair7 = seven;
           c.changes = {{p, 5}, {created, 6}, {n(j), 7}, {seven, 7}};
           c.created = {created};
-          c.description = Str("v7 ", p, " -> ", n(j), ", new 5-7 pair (", p, ", ", seven, "): ", c.steps[0].Describe());
+          c.description = Say("v7 ", p, " -> ", n(j), ", new 5-7 pair (", p, ", ", seven, "): ", c.steps[0].Describe());
           c.result = RequireRegular({n(j), seven});
           finish(c, j, AtomicVia::Split, s1 > 0 ? PairSide::Ccw : PairSide::Cw, false);
         }
@@ -396,9 +403,9 @@ class AtomicOperations {
           c.changes = {{p, 6}, {w, 5}, {created, 5}};
           if (q >= 0) c.changes[q] = 7;
           c.created = {created};
-          c.description = Str("v5 ", p, " -> new vertex ", created, " between ", n(j), " and ", n(j + 1),
+          c.description = Say("v5 ", p, " -> new vertex ", created, " between ", n(j), " and ", n(j + 1),
                               ", new 5-7 pair (", w, ", ", q, "): ", c.steps[0].Describe());
-          c.result = q < 0 ? Result::Fail(Str("vertex ", w, " (valence ", ed_.Valence(w),
+          c.result = q < 0 ? Result::Fail(Say("vertex ", w, " (valence ", ed_.Valence(w),
                                               ") is in the way: this step needs regular vertices around the v5"))
                            : RequireRegular({w, q});
           finish(c, j, AtomicVia::Split, s1 > 0 ? PairSide::Cw : PairSide::Ccw, true);
@@ -422,12 +429,12 @@ class AtomicOperations {
     if (!pre) return Refuse(out, pre.reason);
     const int d = ed_.Valence(p);
     if (d != 5 && d != 7)
-      return Refuse(out, Str("vertex ", p, " has valence ", d, "; this operation moves a v5 or a v7"));
+      return Refuse(out, Say("vertex ", p, " has valence ", d, "; this operation moves a v5 or a v7"));
     if (sector < 0 || sector > 5) return Refuse(out, "the direction must be 0..5");
     if (ref >= 0 && !ed_.Adjacent(p, ref))
-      return Refuse(out, Str("the reference vertex ", ref, " is not a neighbour of vertex ", p));
+      return Refuse(out, Say("the reference vertex ", ref, " is not a neighbour of vertex ", p));
     if (!FrameAt<MeshType>(ed_.V(p), ref >= 0 ? ed_.V(ref) : nullptr).valid)
-      return Refuse(out, Str("vertex ", p, " has no tangent plane (degenerate faces around it)"));
+      return Refuse(out, Say("vertex ", p, " has no tangent plane (degenerate faces around it)"));
     std::vector<AtomicPrediction> all = VertexMoveConfigurations(p, ref);
     // the place: the neighbour (else the new-vertex wedge) in the sector nearest its centre
     const double centre = 60.0 * sector;
@@ -442,7 +449,7 @@ class AtomicOperations {
           best = g, bestAngle = c.angle, bestSite = c.site, bestWedge = c.wedge;
       }
     if (bestSite == -2)
-      return Refuse(out, Str("no edge of vertex ", p, " points into direction ", sector,
+      return Refuse(out, Say("no edge of vertex ", p, " points into direction ", sector,
                              " (the 60-degree sector around ", int(centre), " degrees from the reference edge)"));
     const AtomicPrediction* firstMatch = nullptr;
     for (const AtomicPrediction& c : all) {
@@ -453,7 +460,7 @@ class AtomicOperations {
       if (!firstMatch) firstMatch = &c;
     }
     if (!firstMatch)
-      return Refuse(out, Str("no ", ViaName(via), " moves the v", d, " ", p, " in direction ", sector,
+      return Refuse(out, Say("no ", ViaName(via), " moves the v", d, " ", p, " in direction ", sector,
                              d == 7 && via == AtomicVia::Collapse
                                  ? " (no edge collapse moves a v7: see VertexMoveConfigurations)"
                                  : ""));
@@ -502,33 +509,33 @@ class AtomicOperations {
     Result pre = RequireInterior({p});
     if (!pre) return Refuse(out, pre.reason);
     if (ed_.Valence(p) != 6)
-      return Refuse(out, Str("a 5-5-7-7 quadruple is generated from a regular vertex; vertex ", p, " has valence ",
+      return Refuse(out, Say("a 5-5-7-7 quadruple is generated from a regular vertex; vertex ", p, " has valence ",
                              ed_.Valence(p)));
     if (k < 0 || k > 5) return Refuse(out, "the direction must be 0..5");
     auto n = [&](int j) { return NeighbourFrom(p, ref, k + j); };
     const int nk = n(0);
-    if (nk < 0) return Refuse(out, Str("the reference vertex ", ref, " is not a neighbour of vertex ", p));
+    if (nk < 0) return Refuse(out, Say("the reference vertex ", ref, " is not a neighbour of vertex ", p));
     if (via == QuadrupleVia::Flip) {
       const int a = n(-1), b = n(1);
       out.result = RequireRegular({nk, a, b});
-      out.description = Str("flip edge (", p, ", ", nk, ")");
+      out.description = Say("flip edge (", p, ", ", nk, ")");
       out.steps = {StepFlip(p, nk)};
       out.changes = {{p, 5}, {nk, 5}, {a, 7}, {b, 7}};
       out.irregular = {p, nk, a, b};
     } else if (via == QuadrupleVia::Split) {
       const int b = n(3), created = NextCreated(0);
       out.result = RequireRegular({nk, b});
-      out.description = Str("split vertex ", p, " along edges (", p, ", ", nk, ") and (", p, ", ", b, ")");
+      out.description = Say("split vertex ", p, " along edges (", p, ", ", nk, ") and (", p, ", ", b, ")");
       out.steps = {StepSplit(p, nk, b)};
       out.changes = {{p, 5}, {created, 5}, {nk, 7}, {b, 7}};
       out.irregular = {p, created, nk, b};
       out.created = {created};
     } else {
       const int a = n(-1), b = n(1), far = n(3), q = OppositeInStar(nk, p), created = NextCreated(0);
-      out.result = q < 0 ? Result::Fail(Str("vertex ", nk, " (valence ", ed_.Valence(nk),
+      out.result = q < 0 ? Result::Fail(Say("vertex ", nk, " (valence ", ed_.Valence(nk),
                                             ") is in the way: this step needs regular vertices around vertex ", p))
                          : RequireRegular({nk, a, b, far, q});
-      out.description = Str("collapse vertex ", nk, " into ", p, " (a v8), then split it along edges (", p, ", ", q,
+      out.description = Say("collapse vertex ", nk, " into ", p, " (a v8), then split it along edges (", p, ", ", q,
                             ") and (", p, ", ", far, ")");
       out.steps = {StepCollapse(nk, p), StepSplit(p, q, far)};
       out.changes = {{p, 6}, {nk, 0}, {created, 6}, {a, 5}, {b, 5}, {far, 7}};
@@ -550,10 +557,10 @@ class AtomicOperations {
     if (!pre) return Refuse(out, pre.reason);
     if (sector < 0 || sector > 5) return Refuse(out, "the direction must be 0..5");
     if (ref >= 0 && !ed_.Adjacent(p, ref))
-      return Refuse(out, Str("the reference vertex ", ref, " is not a neighbour of vertex ", p));
+      return Refuse(out, Say("the reference vertex ", ref, " is not a neighbour of vertex ", p));
     const int nk = NeighbourInSector(p, sector, ref);
     if (nk < 0)
-      return Refuse(out, Str("no edge of vertex ", p, " points into direction ", sector,
+      return Refuse(out, Say("no edge of vertex ", p, " points into direction ", sector,
                              " (the 60-degree sector around ", 60 * sector, " degrees from the reference edge)"));
     AtomicPrediction r = PredictQuadrupleGeneration(p, 0, via, nk);
     FrameAngle(r, p, nk, ref);
@@ -643,7 +650,7 @@ class AtomicOperations {
       for (int v : group) n5 += ed_.Valence(v) == 5;
       const int survivor = n5 == 2 ? 5 : 7;
       c = Candidates(group, CancellationTest(group, 2, survivor),
-                     Str(n5 == 2 ? "5-5-7" : "5-7-7", " triple cancelled into one v", survivor), splits);
+                     Say(n5 == 2 ? "5-5-7" : "5-7-7", " triple cancelled into one v", survivor), splits);
     } else {
       c = Candidates(group, CancellationTest(group, 4, 0), "5-5-7-7 quadruple removed", splits);
     }
@@ -675,7 +682,10 @@ class AtomicOperations {
   AtomicOutcome Apply(const AtomicPrediction& p) {
     AtomicOutcome out;
     out.description = p.description;
-    if (!p.result) return Refuse(out, p.result.reason);
+    if (!p.result) {
+      Refuse(out, p.result.reason);
+      return out;
+    }
     auto cp = ed_.Mark();
     size_t ci = 0;
     for (const GraphStep& s : p.steps) {
@@ -685,18 +695,22 @@ class AtomicOperations {
                                                   : ed_.Split(s.x, s.y, s.z, &created);
       if (!r) {
         ed_.RollbackTo(cp);
-        return Refuse(out, p.steps.size() > 1 ? s.Describe() + ": " + r.reason : r.reason);
+        Refuse(out, p.steps.size() > 1 ? s.Describe() + ": " + r.reason : r.reason);
+        return out;
       }
       if (s.kind == GraphStep::kSplit) {
         if (ci >= p.created.size() || created != p.created[ci]) {
           ed_.RollbackTo(cp);
-          return Refuse(out, Str("internal check failed: ", s.Describe(), " created vertex ", created));
+          Refuse(out, Say("internal check failed: ", s.Describe(), " created vertex ", created));
+          return out;
         }
         ++ci;
       }
     }
     static_cast<AtomicRoles&>(out) = static_cast<const AtomicRoles&>(p);
-    return Finish(out, Result::Ok(), cp, p.changes, p.irregular);
+    // returned by name, not through Finish's reference: a copy of every outcome otherwise
+    Finish(out, Result::Ok(), cp, p.changes, p.irregular);
+    return out;
   }
 
  private:
@@ -704,9 +718,10 @@ class AtomicOperations {
     out.result = Result::Fail(why);
     return out;
   }
+  /// Refuses a prediction the caller is about to return: moved out, not copied.
   static AtomicPrediction Refuse(AtomicPrediction& out, const std::string& why) {
     out.result = Result::Fail(why);
-    return out;
+    return std::move(out);
   }
 
   static GraphStep StepFlip(int x, int y) { return GraphStep{GraphStep::kFlip, x, y, -1}; }
@@ -780,9 +795,9 @@ class AtomicOperations {
 
   Result RequireInterior(const std::vector<int>& vs) {
     for (int v : vs) {
-      if (!ed_.IsLive(v)) return Result::Fail(Str("vertex ", v, " does not exist"));
+      if (!ed_.IsLive(v)) return Result::Fail(Say("vertex ", v, " does not exist"));
       if (ed_.IsBoundary(v))
-        return Result::Fail(Str("vertex ", v, " lies on the boundary; these operations work on interior vertices"));
+        return Result::Fail(Say("vertex ", v, " lies on the boundary; these operations work on interior vertices"));
     }
     return Result::Ok();
   }
@@ -791,9 +806,9 @@ class AtomicOperations {
     for (int v : vs) {
       if (v < 0 || !ed_.IsLive(v)) return Result::Fail("the operation would reach past the mesh");
       if (ed_.IsBoundary(v))
-        return Result::Fail(Str("the operation would touch boundary vertex ", v));
+        return Result::Fail(Say("the operation would touch boundary vertex ", v));
       if (ed_.Valence(v) != 6)
-        return Result::Fail(Str("vertex ", v, " (valence ", ed_.Valence(v),
+        return Result::Fail(Say("vertex ", v, " (valence ", ed_.Valence(v),
                                 ") is in the way: this step needs regular vertices around the irregular ones; "
                                 "try another direction or move the other irregular vertex first"));
     }
@@ -801,7 +816,7 @@ class AtomicOperations {
   }
 
   /// Checks the stated valence changes; rolls back and refuses if they do not hold.
-  AtomicOutcome& Finish(AtomicOutcome& out, Result r, typename Editor::Checkpoint cp, const std::map<int, int>& expect,
+  AtomicOutcome& Finish(AtomicOutcome& out, Result r, typename Editor::Checkpoint cp, const ValenceChanges& expect,
                         const std::vector<int>& irregular) {
     if (!r) {
       ed_.RollbackTo(cp);
@@ -811,7 +826,7 @@ class AtomicOperations {
       const int got = ed_.IsLive(kv.first) ? ed_.Valence(kv.first) : 0;
       if (got != kv.second) {
         ed_.RollbackTo(cp);
-        return Refuse(out, Str("internal check failed: vertex ", kv.first, " has valence ", got, " instead of ",
+        return Refuse(out, Say("internal check failed: vertex ", kv.first, " has valence ", got, " instead of ",
                                kv.second, " after ", out.description));
       }
     }
@@ -1037,16 +1052,17 @@ class AtomicOperations {
       if (!test(before, pred)) continue;
       AtomicPrediction p;
       p.steps = {c};
-      p.description = what + ": " + (c.kind == GraphStep::kSplit
-                                         ? Str("split vertex ", c.x, " along edges to ", c.y, " and ", c.z)
-                                         : c.Describe());
+      if (describe_)
+        p.description = what + ": " + (c.kind == GraphStep::kSplit
+                                           ? Str("split vertex ", c.x, " along edges to ", c.y, " and ", c.z)
+                                           : c.Describe());
       if (c.kind == GraphStep::kSplit) {
         pred[created] = pred[-1];
         pred.erase(-1);
         p.created = {created};
       }
       if (c.kind == GraphStep::kCollapse) p.deleted = {c.x};
-      p.changes = pred.ToMap();
+      p.changes = pred;
       for (auto& kv : pred)
         if (kv.second != 6 && kv.second != 0) p.irregular.push_back(kv.first);
       p.result = Result::Ok();
@@ -1063,7 +1079,14 @@ class AtomicOperations {
   }
 
  private:
+  /// Str(args...) when describing (SetDescribing), else an empty string without formatting.
+  template <class... Args>
+  std::string Say(const Args&... args) const {
+    return describe_ ? Str(args...) : std::string();
+  }
+
   Editor& ed_;
+  bool describe_ = true;
   StampSet valenceSeen_;        ///< Candidates: the vertices whose valence it has walked
   std::vector<int> valenceOf_;  ///< ... and their valences
 };

@@ -66,6 +66,8 @@ class AutomaticReduction {
         guard_(m, original, opt_, ed_, state_, &crease_),
         cancel_(m, ed_, comp_, guard_, state_),
         transport_(m, opt_, ed_, comp_.atomic(), guard_, state_, cancel_) {
+    // The run reports counts and reasons of its own, never an atomic operation's text.
+    comp_.atomic().SetDescribing(false);
     // A crease or frozen vertex keeps its index-keyed flag through a whole-run restore
     // (RestoreSnapshot), so its slot is never reused; a reused slot's run state is forgotten.
     ed_.slotPool().Enable(opt_.reuseDeadSlots, [this](int v) {

@@ -287,6 +287,21 @@ class MeshEditor {
     return Fail("splitting vertex ", w, " ", last.reason);
   }
 
+  /// Where Split(w, a, b) puts w and the new vertex, without editing the mesh: false if the
+  /// split cannot be done or its places are not certain. With the fold check on
+  /// (GeometryOptions::checkFolds), a split refused at share 1/3 retries at smaller shares, so
+  /// only the first share's places are known; with it off (a topology-only probe) the first
+  /// share always holds. Exact to the bit: SplitWith computes its places with the same
+  /// function. Precondition: CanSplit(w, a, b).
+  bool PredictSplitPlaces(int w, int a, int b, CoordType& pw, CoordType& px) {
+    if (geom_.checkFolds) return false;
+    VertexStar<MeshType> st = Star(w);
+    const int i = st.IndexOf(V(a)), j = st.IndexOf(V(b));
+    if (i < 0 || j < 0 || i == j) return false;
+    SplitPlaces(st, V(w)->P(), i, j, ScalarType(1) / 3, pw, px);
+    return true;
+  }
+
   // ---------------------------------------------------------------- boundary vertex split
   /// Can boundary vertex w be split along its interior edge to a, the inverse of collapsing a
   /// boundary edge? w on the boundary, (w, a) an interior edge.
@@ -455,6 +470,27 @@ class MeshEditor {
     g->FFi(ge) = e;
   }
 
+  /// The places of a split of st's centre w (at p) along its neighbours i and j (star indices):
+  /// corners i .. j-1 stay with w, corners j .. i-1 go to the new vertex. Each half moves a
+  /// share s toward the centroid of its own neighbours (both split edges' far ends included).
+  /// A boundary w: the half whose corners wrap around the boundary gap (w's if i > j, else the
+  /// new vertex's) keeps the boundary and stays at w's position, on the boundary curve.
+  static void SplitPlaces(const VertexStar<MeshType>& st, const CoordType& p, int i, int j, ScalarType s, CoordType& pw,
+                          CoordType& px) {
+    const int n = int(st.corners.size());
+    CoordType c1(0, 0, 0), c2(0, 0, 0);
+    int n1 = 0, n2 = 0;
+    for (int k = i; k != j; k = (k + 1) % n, ++n1) c1 += st.corners[size_t(k)].f->V((st.corners[size_t(k)].z + 1) % 3)->P();
+    c1 += st.neighbors[size_t(j)]->P();
+    c1 /= ScalarType(n1 + 1);
+    for (int k = j; k != i; k = (k + 1) % n, ++n2) c2 += st.corners[size_t(k)].f->V((st.corners[size_t(k)].z + 1) % 3)->P();
+    c2 += st.neighbors[size_t(i)]->P();
+    c2 /= ScalarType(n2 + 1);
+    const bool wKeepsBoundary = st.boundary && i > j, xTakesBoundary = st.boundary && i < j;
+    pw = wKeepsBoundary ? p : p + (c1 - p) * s;
+    px = xTakesBoundary ? p : p + (c2 - p) * s;
+  }
+
   /// The fold check's reference for a split: the area-weighted normal of the star and its
   /// mean face area.
   void StarReference(const VertexStar<MeshType>& st, CoordType& ref, ScalarType& refArea) {
@@ -598,19 +634,8 @@ class MeshEditor {
     CoordType ref;
     ScalarType refArea;
     StarReference(st, ref, refArea);
-    // New positions: each half moves a share s toward the centroid of its own neighbours.
-    CoordType c1(0, 0, 0), c2(0, 0, 0);
-    for (auto& c : g1) c1 += c.f->V((c.z + 1) % 3)->P();
-    c1 += b->P();
-    c1 /= ScalarType(g1.size() + 1);
-    for (auto& c : g2) c2 += c.f->V((c.z + 1) % 3)->P();
-    c2 += a->P();
-    c2 /= ScalarType(g2.size() + 1);
-    const CoordType p = w->P();
-    // A boundary w: the half whose corners wrap around the boundary gap (g1 if i > j, else g2)
-    // keeps the boundary and stays at w's position, on the boundary curve.
-    const bool wKeepsBoundary = st.boundary && i > j, xTakesBoundary = st.boundary && i < j;
-    const CoordType pw = wKeepsBoundary ? p : p + (c1 - p) * s, px = xTakesBoundary ? p : p + (c2 - p) * s;
+    CoordType pw, px;
+    SplitPlaces(st, w->P(), i, j, s, pw, px);
     const auto carried = attr_.BeforeSplit(st, g1.front().f, g1.back().f, pw, px);
 
     x->ImportData(*w);

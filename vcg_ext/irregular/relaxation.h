@@ -299,16 +299,21 @@ double MaxCornerCos(const FaceType* f) {
 /// the one after is under 30 degrees: no triangle's smallest angle exceeds 60, so an angle after
 /// of 30 or more halves nothing (its corner cosines were 7% of Automatic Reduction's
 /// instructions on fandisk, half of them for the angle before).
+/// before: the star's face normals (vcg::TriangleNormal) at v's place, if the caller has them.
 template <class MeshType>
 bool MoveHurts(const VertexStar<MeshType>& st, typename MeshType::VertexType* v, const typename MeshType::CoordType& p,
-               double minCos) {
+               double minCos, const typename MeshType::CoordType* before = nullptr) {
   typedef typename MeshType::CoordType CoordType;
   // the normals before the move: on the stack up to valence 16 (no allocation per vertex)
   const size_t n = st.corners.size();
   CoordType onStack[16];
-  std::vector<CoordType> onHeap(n > 16 ? n : 0);
-  CoordType* normalBefore = n > 16 ? onHeap.data() : onStack;
-  for (size_t i = 0; i < n; ++i) normalBefore[i] = vcg::TriangleNormal(*st.corners[i].f);
+  std::vector<CoordType> onHeap(n > 16 && !before ? n : 0);
+  const CoordType* normalBefore = before;
+  if (!before) {
+    CoordType* computed = n > 16 ? onHeap.data() : onStack;
+    for (size_t i = 0; i < n; ++i) computed[i] = vcg::TriangleNormal(*st.corners[i].f);
+    normalBefore = computed;
+  }
   double maxCosAfter = -1.0;
   const CoordType old = v->P();
   v->P() = p;
@@ -339,6 +344,14 @@ typename MeshType::CoordType VertexNormal(const VertexStar<MeshType>& st) {
   typename MeshType::CoordType n(0, 0, 0);
   for (auto& c : st.corners) n += vcg::TriangleNormal(*c.f);
   return n.Normalize();
+}
+
+/// VertexNormal from the star's face normals, already computed (the same sum, so the same bits).
+template <class CoordType>
+CoordType VertexNormalOf(const CoordType* faceNormals, size_t n) {
+  CoordType s(0, 0, 0);
+  for (size_t i = 0; i < n; ++i) s += faceNormals[i];
+  return s.Normalize();
 }
 
 /// Live and not on a crease (crease: per-vertex flags, or null for none).
@@ -379,6 +392,7 @@ RelaxReport LocalRelax(MeshType& m, const std::vector<int>& region, const Surfac
   if (cached)
     for (int v : region) stars.push_back(StarOf<MeshType>(&m.vert[size_t(v)]));
   VertexStar<MeshType> walked;
+  static thread_local std::vector<CoordType> faceNormals;  // the star's, at the vertex's place
   auto starAt = [&](size_t k) -> const VertexStar<MeshType>& {
     if (cached) return stars[k];
     walked = StarOf<MeshType>(&m.vert[size_t(region[k])]);
@@ -411,7 +425,12 @@ RelaxReport LocalRelax(MeshType& m, const std::vector<int>& region, const Surfac
       CoordType c(0, 0, 0);
       for (auto n : st.neighbors) c += n->P();
       c /= ScalarType(st.neighbors.size());
-      const CoordType n = relax_detail::VertexNormal<MeshType>(st);
+      // the face normals once, for the vertex normal and the move check (0.9.19: computed
+      // twice before, 1.5% of Automatic Reduction's instructions)
+      const size_t nf = st.corners.size();
+      if (faceNormals.size() < nf) faceNormals.resize(nf);
+      for (size_t i = 0; i < nf; ++i) faceNormals[i] = vcg::TriangleNormal(*st.corners[i].f);
+      const CoordType n = relax_detail::VertexNormalOf(faceNormals.data(), nf);
       CoordType d = c - vp->P();
       d -= n * (d.dot(n));  // tangential part only (the surface is kept by projection)
       CoordType p = vp->P() + d * ScalarType(opt.step);
@@ -422,7 +441,7 @@ RelaxReport LocalRelax(MeshType& m, const std::vector<int>& region, const Surfac
       }
       if (opt.reproject && original)
         p = CoordType::Construct(original->ClosestForVertex(size_t(v), vcg::Point3f::Construct(p)));
-      if (relax_detail::MoveHurts<MeshType>(st, vp, p, opt.minFaceTurnCos)) {
+      if (relax_detail::MoveHurts<MeshType>(st, vp, p, opt.minFaceTurnCos, faceNormals.data())) {
         ++rep.rejected;
         continue;
       }
