@@ -282,3 +282,58 @@ TEST(Atomic, RandomOperationsOnRealMesh) {
   ASSERT_TRUE(CheckInvariants(m).ok) << CheckInvariants(m).reason;
   EXPECT_TRUE(test::AdjacencyEqualsRebuild(m));
 }
+
+// SetDescribing(false) (Automatic Reduction's setting) changes only the text: every 5-7 pair
+// move predicted and applied on the bunny gives the same steps, valence changes,
+// roles and mesh as with descriptions on, with empty descriptions.
+TEST(Atomic, DescribingOffChangesOnlyTheText) {
+  TMesh m;
+  ASSERT_TRUE(test::LoadCorpus(m, "bunny00.off")) << "the corpus is installed by scripts/test.sh";
+  MeshEditor<TMesh> ed(m);
+  AtomicOperations<TMesh> told(ed), quiet(ed);
+  quiet.SetDescribing(false);
+  EXPECT_TRUE(told.Describing());
+  EXPECT_FALSE(quiet.Describing());
+  int predicted = 0, applied = 0, refused = 0;
+  for (int v5 = 0; v5 < int(m.vert.size()) && applied < 150; ++v5) {
+    if (!ed.IsLive(v5) || ed.IsBoundary(v5) || ed.Valence(v5) != 5) continue;
+    std::vector<int> ring;  // indices: a split may move the vertex vector, and its pointers
+    for (auto* nb : ed.Star(v5).neighbors) ring.push_back(ed.Index(nb));
+    for (int v7 : ring) {
+      if (ed.IsBoundary(v7) || ed.Valence(v7) != 7) continue;
+      for (int dir = 0; dir < 6; ++dir) {
+        const AtomicPrediction a = told.PredictMovePair57(v5, v7, dir), b = quiet.PredictMovePair57(v5, v7, dir);
+        ++predicted;
+        ASSERT_EQ(bool(a), bool(b));
+        EXPECT_TRUE(b.description.empty());
+        if (!a) {
+          ++refused;
+          EXPECT_FALSE(a.result.reason.empty());
+          continue;
+        }
+        EXPECT_FALSE(a.description.empty());
+        EXPECT_TRUE(a.changes == b.changes);
+        EXPECT_EQ(a.irregular, b.irregular);
+        EXPECT_EQ(a.pair5, b.pair5);
+        EXPECT_EQ(a.pair7, b.pair7);
+        ASSERT_EQ(a.steps.size(), b.steps.size());
+        // applied by each, from the same mesh: the same outcome and the same mesh
+        auto cp = ed.Mark();
+        const AtomicOutcome oa = told.Apply(a);
+        const test::MeshSnapshot sa = test::Snapshot(m);
+        ed.RollbackTo(cp);
+        const AtomicOutcome ob = quiet.Apply(b);
+        ASSERT_EQ(bool(oa), bool(ob));
+        EXPECT_TRUE(test::Snapshot(m) == sa);
+        EXPECT_TRUE(oa.changes == ob.changes);
+        EXPECT_EQ(oa.irregular, ob.irregular);
+        EXPECT_TRUE(ob.description.empty());
+        ed.RollbackTo(cp);
+        applied += bool(oa);
+      }
+    }
+  }
+  EXPECT_GT(applied, 100);
+  EXPECT_GT(refused, 10);
+  RecordProperty("predicted", predicted);
+}

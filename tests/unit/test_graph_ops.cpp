@@ -210,3 +210,52 @@ TEST(GraphOps, JournalRollbackRestoresEverything) {
   ed.RollbackTo(cp);
   EXPECT_EQ(test::Snapshot(m), snap);
 }
+
+// PredictSplitPlaces (used by the reduction's StepCloser to skip applying every split) gives
+// the places Split then gives, to the bit: interior vertices of the bunny and boundary
+// vertices of a jittered patch, every pair of edges; and it declines with the fold check on,
+// where a split refused at share 1/3 retries at smaller shares.
+TEST(GraphOps, PredictSplitPlacesAreTheSplitsToTheBit) {
+  for (int which = 0; which < 2; ++which) {
+    TMesh m;
+    if (which == 0 && !test::LoadCorpus(m, "bunny00.off")) test::Icosphere(m, 3);
+    if (which == 1) test::HexPatch(m, 4);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> jitter(-0.05, 0.05);
+    if (which == 1)  // a flat lattice is too symmetric: every centroid would be a lattice point
+      for (auto& v : m.vert) v.P() += TMesh::CoordType(jitter(rng), jitter(rng), 0);
+    MeshEditor<TMesh> ed(m);
+    EXPECT_TRUE(ed.geometry().checkFolds);
+    {
+      TMesh::CoordType pw, px;
+      const VertexStar<TMesh> s = ed.Star(0);
+      EXPECT_FALSE(ed.PredictSplitPlaces(0, ed.Index(s.neighbors[0]), ed.Index(s.neighbors[2]), pw, px));
+    }
+    ed.geometry().checkFolds = false;
+    int compared = 0, boundary = 0;
+    for (int v = 0; v < int(m.vert.size()) && compared < 400; v += which == 0 ? 37 : 1) {
+      if (!ed.IsLive(v)) continue;
+      const VertexStar<TMesh> s = ed.Star(v);
+      const int d = s.Valence();
+      for (int i = 0; i < d; ++i)
+        for (int j = 0; j < d; ++j) {
+          const int a = ed.Index(s.neighbors[size_t(i)]), b = ed.Index(s.neighbors[size_t(j)]);
+          if (i == j || !ed.CanSplit(v, a, b)) continue;
+          TMesh::CoordType pw, px;
+          ASSERT_TRUE(ed.PredictSplitPlaces(v, a, b, pw, px));
+          auto cp = ed.Mark();
+          int created = -1;
+          ASSERT_TRUE(ed.Split(v, a, b, &created).ok);
+          for (int k = 0; k < 3; ++k) {
+            ASSERT_EQ(m.vert[size_t(v)].P()[k], pw[k]) << "vertex " << v << " split along " << a << ", " << b;
+            ASSERT_EQ(m.vert[size_t(created)].P()[k], px[k]) << "vertex " << v << " split along " << a << ", " << b;
+          }
+          ed.RollbackTo(cp);
+          ++compared;
+          boundary += s.boundary;
+        }
+    }
+    EXPECT_GT(compared, 100);
+    if (which == 1) EXPECT_GT(boundary, 10);  // the boundary rule (one half stays) is covered
+  }
+}
