@@ -142,13 +142,43 @@ class AtomicOperations {
   /// Dry run of MovePair57: the graph operation, where the pair lands (pair5, pair7), the
   /// created or deleted vertex, every valence change. Does not edit the mesh.
   AtomicPrediction PredictMovePair57(int v5, int v7, int dir) {
-    AtomicPrediction out;
+    const Result pair = CheckPair57(v5, v7);
+    if (!pair) {
+      AtomicPrediction out;
+      return Refuse(out, pair.reason);
+    }
+    return PredictMovePair57Of(v5, v7, dir);
+  }
+
+  /// PredictMovePair57 for every direction 0..5 (out[dir]), the pair's own checks made once
+  /// instead of six times (the reduction's StepCloser asks for all six at every step).
+  void PredictMovePair57All(int v5, int v7, AtomicPrediction out[6]) {
+    const Result pair = CheckPair57(v5, v7);
+    for (int dir = 0; dir < 6; ++dir) {
+      if (pair) {
+        out[dir] = PredictMovePair57Of(v5, v7, dir);
+      } else {
+        out[dir] = AtomicPrediction();
+        out[dir].result = pair;
+      }
+    }
+  }
+
+  /// Is (v5, v7) an adjacent interior 5-7 pair? PredictMovePair57's checks of the pair itself.
+  Result CheckPair57(int v5, int v7) {
     Result pre = RequireInterior({v5, v7});
-    if (!pre) return Refuse(out, pre.reason);
+    if (!pre) return pre;
     if (ed_.Valence(v5) != 5 || ed_.Valence(v7) != 7)
-      return Refuse(out, Say("a 5-7 pair needs a vertex of valence 5 and one of valence 7; vertices ", v5, " and ", v7,
-                             " have valences ", ed_.Valence(v5), " and ", ed_.Valence(v7)));
-    if (!ed_.Adjacent(v5, v7)) return Refuse(out, Say("vertices ", v5, " and ", v7, " are not adjacent"));
+      return Result::Fail(Say("a 5-7 pair needs a vertex of valence 5 and one of valence 7; vertices ", v5, " and ", v7,
+                              " have valences ", ed_.Valence(v5), " and ", ed_.Valence(v7)));
+    if (!ed_.Adjacent(v5, v7)) return Result::Fail(Say("vertices ", v5, " and ", v7, " are not adjacent"));
+    return Result::Ok();
+  }
+
+ private:
+  /// PredictMovePair57 after CheckPair57 passed.
+  AtomicPrediction PredictMovePair57Of(int v5, int v7, int dir) {
+    AtomicPrediction out;
     if (dir < 0 || dir > 5) return Refuse(out, "the direction must be 0..5");
     auto n = [&](int k) { return NeighbourFrom(v5, v7, k); };
     auto m = [&](int k) { return NeighbourFrom(v7, v5, k); };
@@ -188,6 +218,8 @@ class AtomicOperations {
     out.result = Result::Ok();
     return Check(std::move(out));
   }
+
+ public:
 
   /// Fig. 6 numbered by angle: direction k is the k-th of the six moves counted
   /// counter-clockwise (seen from outside) from the v5-to-v7 edge, by the direction in which

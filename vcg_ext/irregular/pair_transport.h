@@ -196,8 +196,10 @@ class PairTransport {
     };
     Bound bounds[6];  // at most one per direction: no heap allocation per step
     size_t count = 0;
+    AtomicPrediction all[6];
+    ops_.PredictMovePair57All(v5, v7, all);
     for (int dir = 0; dir < 6; ++dir) {
-      AtomicPrediction pr = ops_.PredictMovePair57(v5, v7, dir);
+      const AtomicPrediction& pr = all[dir];
       bool ok = bool(pr);
       for (auto& kv : pr.changes) ok = ok && !state_.Frozen(kv.first);
       if (!ok) continue;
@@ -417,8 +419,10 @@ class PairTransport {
   /// One pair step, in the first of the six directions after which a removal applies. A step
   /// its dry run refuses (blocked, or touching a frozen vertex) is not tried.
   bool StepAndCancel(int v5, int v7, std::vector<int>& touched) {
+    AtomicPrediction all[6];
+    ops_.PredictMovePair57All(v5, v7, all);
     for (int dir = 0; dir < 6; ++dir) {
-      AtomicPrediction pr = ops_.PredictMovePair57(v5, v7, dir);
+      const AtomicPrediction& pr = all[dir];
       bool ok = bool(pr);
       for (auto& kv : pr.changes) ok = ok && !state_.Frozen(kv.first);
       if (!ok) continue;

@@ -120,12 +120,14 @@ class SlotPool {
     takenVerts_.clear();
     takenFaces_.clear();
     if (!on_) return;
-    auto dead = [](std::vector<size_t> idx, const auto& vec) {
-      std::sort(idx.begin(), idx.end());
-      idx.erase(std::unique(idx.begin(), idx.end()), idx.end());
+    // the dead ones first, then sorted and unique: the same list as sorting every logged index
+    // (most are live faces and vertices, logged many times), at a fraction of the sort
+    auto dead = [](const std::vector<size_t>& idx, const auto& vec) {
       std::vector<int> out;
       for (size_t i : idx)
         if (i < vec.size() && vec[i].IsD()) out.push_back(int(i));
+      std::sort(out.begin(), out.end());
+      out.erase(std::unique(out.begin(), out.end()), out.end());
       return out;
     };
     const Checkpoint all;  // the log since the last commit
