@@ -220,7 +220,6 @@ class AtomicOperations {
   }
 
  public:
-
   /// Fig. 6 numbered by angle: direction k is the k-th of the six moves counted
   /// counter-clockwise (seen from outside) from the v5-to-v7 edge, by the direction in which
   /// the pair's midpoint moves on a regular lattice: k = 0 moves along the v5-to-v7 edge,

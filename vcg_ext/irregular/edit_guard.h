@@ -344,11 +344,8 @@ class EditGuard {
     // (cell key, face) pairs sorted by key then face: each cell's faces in increasing face
     // order, as a hash map of per-cell vectors filled face by face would hold them, without
     // a heap allocation per cell (the buffer is reused from edit to edit)
-    // Built at the first sample that needs a search (0.9.19): most samples are settled by the
-    // last sample's face or by facing away, and then the grid is never needed.
     std::vector<std::pair<uint64_t, int>>& faceCells = faceCells_;
     faceCells.clear();
-    bool gridBuilt = false;
     std::vector<vcg::Triangle3<float>> tri;
     std::vector<vcg::Box3<float>> boxes;
     tri.reserve(all.size());
@@ -360,17 +357,11 @@ class EditGuard {
       vcg::Box3<float> b;
       for (int z = 0; z < 3; ++z) b.Add(tri.back().P(z));
       boxes.push_back(b);
+      for (int64_t x = cellOf(b.min[0]); x <= cellOf(b.max[0]); ++x)
+        for (int64_t y = cellOf(b.min[1]); y <= cellOf(b.max[1]); ++y)
+          for (int64_t z = cellOf(b.min[2]); z <= cellOf(b.max[2]); ++z) faceCells.emplace_back(key(x, y, z), int(k));
     }
-    auto buildGrid = [&]() {
-      for (size_t k = 0; k < all.size(); ++k) {
-        const vcg::Box3<float>& b = boxes[k];
-        for (int64_t x = cellOf(b.min[0]); x <= cellOf(b.max[0]); ++x)
-          for (int64_t y = cellOf(b.min[1]); y <= cellOf(b.max[1]); ++y)
-            for (int64_t z = cellOf(b.min[2]); z <= cellOf(b.max[2]); ++z) faceCells.emplace_back(key(x, y, z), int(k));
-      }
-      std::sort(faceCells.begin(), faceCells.end());
-      gridBuilt = true;
-    };
+    std::sort(faceCells.begin(), faceCells.end());
     // A face spans several cells: measured once per sample (lastSample); and not at all when
     // its box is already farther than the closest face so far (the distance to a triangle is
     // at least the distance to its box; the margin covers rounding), which cannot change the
@@ -415,7 +406,6 @@ class EditGuard {
       const float bound = float(onCrease ? std::min(budget_, creaseBudget_) : budget_);
       if (sampleHint >= 0 && harmless(sampleHint, p, bound)) continue;
       if (!originalSamples_.AnyNormal(i, facesSome)) continue;
-      if (!gridBuilt) buildGrid();
       float best = std::numeric_limits<float>::max();
       int bestFace = -1;
       bool done = false;
