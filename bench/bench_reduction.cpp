@@ -9,7 +9,8 @@
 // does, SetFilterTravel, unless they are given): maxTravel, glideTravel, targetsPerPair, maxSweeps,
 // localRelaxIterations, minAngle, budget (Hausdorff, percent of the diagonal), maxRefusals
 // (maxRefusalsPerRegion; 0: no bound), partialAbsorption (0/1), reuseDeadSlots (0/1), boundarySlide (0/1),
-// refusedRouteMemo (0/1), farMeetingReach, farMeetingTravel (0: no far meetings), angleRepairRounds, angleRepairSlack, travelReference (travelReferenceVertices),
+// refusedRouteMemo (0/1), farMeetingReach, farMeetingTravel (0: no far meetings), farMeetingRounds,
+// nearMeetingTries (0: no near meetings), nearMeetingTriesPerKept, angleRepairRounds, angleRepairSlack, travelReference (travelReferenceVertices),
 // maxTravelScale, creaseDeg, anglePolish (anglePolishDeg; 0: none), anglePolishRounds.
 // files: saveRemeshed=<path> writes the remeshed input (OFF), saveResult=<path> the result, for
 // profiling the reduction alone on a fixed input and for comparing two runs byte by byte (with
@@ -138,6 +139,9 @@ int main(int argc, char** argv) {
     else if (key == "timeLimit") opt.timeLimitSeconds = v > 0 ? v : opt.timeLimitSeconds;
     else if (key == "farMeetingReach") opt.farMeetingReach = v;
     else if (key == "farMeetingTravel") opt.farMeetingTravel = v;
+    else if (key == "farMeetingRounds") opt.farMeetingRounds = int(v);
+    else if (key == "nearMeetingTries") opt.nearMeetingTries = int(v);
+    else if (key == "nearMeetingTriesPerKept") opt.nearMeetingTriesPerKept = int(v);
     else if (key == "memory") memory = v != 0;
     else if (key == "loadOnly") loadOnly = v != 0;
     else {
@@ -207,10 +211,10 @@ int main(int argc, char** argv) {
                 HausdorffPercent(m, input), s.minAngleDeg, 100 * s.shareBelow30,
                 std::chrono::duration<double>(t1 - t0).count(), std::chrono::duration<double>(t2 - t1).count(), r.budgetRetries, int(r.gaveUp.size()), r.gaveUpVertices, r.allUndone ? " (all undone)" : "");
     std::printf("  %s; travel %d; undone %d (angle %d, Hausdorff %d, frozen %d, boundary %d); angle polish %d of %d; "
-                "far meetings %d of %d%s\n",
+                "far meetings %d of %d, near %d of %d in %d rounds%s\n",
                 r.leftovers.Summary().c_str(), r.travel, r.undone, r.undoneAngle, r.undoneHausdorff, r.undoneFrozen,
                 r.undoneBoundary, r.anglePolished, r.anglePolishBelow, r.farMeetingsKept, r.farMeetings,
-                r.finalSweepsUndone ? "; final sweeps undone" : "");
+                r.nearMeetingsKept, r.nearMeetings, r.meetingRounds, r.finalSweepsUndone ? "; final sweeps undone" : "");
     std::fflush(stdout);
   }
   const double peak = StatusMiB("VmHWM");

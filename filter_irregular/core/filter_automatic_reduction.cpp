@@ -149,8 +149,10 @@ FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par
            rep.typeSplits, rep.localCancellations, rep.transports, rep.glides, rep.pairSteps, rep.splitAbsorptions,
            rep.partialAbsorptions, rep.undone);
   ctx.Logf("Far meetings: %d of %d irregular vertices with no partner within the travel but one within %.1fx it "
-           "cancelled by a longer walk",
-           rep.farMeetingsKept, rep.farMeetings, opt.farMeetingReach);
+           "cancelled by a longer walk; near meetings: %d of %d with a partner within the travel that the sweeps "
+           "left (%d rounds)",
+           rep.farMeetingsKept, rep.farMeetings, opt.farMeetingReach, rep.nearMeetingsKept, rep.nearMeetings,
+           rep.meetingRounds);
   ctx.Logf("Pair travel: %d steps (maxTravel %d%s); %d routes kept after their sharpest triangles were relaxed again",
            rep.travel, opt.maxTravel,
            rep.travel != opt.maxTravel ? ", grown with the square root of the vertex count above 20000" : "",
@@ -220,6 +222,9 @@ FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par
   out.SetInt("partial_absorptions", rep.partialAbsorptions);
   out.SetInt("far_meetings", rep.farMeetings);
   out.SetInt("far_meetings_kept", rep.farMeetingsKept);
+  out.SetInt("near_meetings", rep.nearMeetings);
+  out.SetInt("near_meetings_kept", rep.nearMeetingsKept);
+  out.SetInt("meeting_rounds", rep.meetingRounds);
   out.SetInt("angle_repairs", rep.angleRepairs);
   out.SetInt("angle_polished", rep.anglePolished);
   out.SetInt("angle_polish_below", rep.anglePolishBelow);

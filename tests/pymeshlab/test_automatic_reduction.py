@@ -79,6 +79,8 @@ def test_bunny_example_meets_the_paper_and_beats_the_peer():
     assert out["type_splits"] + out["local_cancellations"] + out["transports"] + out["glides"] > 0
     assert out["split_absorptions"] > 0 and out["partial_absorptions"] >= 0
     assert 0 <= out["far_meetings_kept"] <= out["far_meetings"]
+    assert 0 <= out["near_meetings_kept"] <= out["near_meetings"]
+    assert 1 <= out["meeting_rounds"] <= 3
     assert 0 <= out["angle_polished"] <= out["angle_polish_below"]
     assert 0 < out["reduction_seconds"] <= out["seconds"]
     # the oracle's distance against MeshLab's own sampled one: both sample the surfaces (neither

@@ -1227,13 +1227,51 @@ TEST(ReductionParts, AnglePolishRelaxesShearedTrianglesAwayAndOnlyThere) {
   }
 }
 
+// Near meetings and rounds (AutomaticReduction::Meetings, 0.9.20): the far meetings' stage also
+// gives its longer turn to vertices with a partner within the travel that the sweeps left, while
+// those turns pay their way (nearMeetingTries + nearMeetingTriesPerKept per kept one), and runs
+// again while a round removes something. knot1 at 6000 vertices, travel 8 (native bench: 18
+// left without near meetings, 12 with, 3 of 8 kept in 3 rounds).
+TEST(AutomaticReduction, NearMeetingsPayTheirWayAndCancelSome) {
+  const int n = 6000;
+  ReductionOptions none, on, one;
+  SetFilterTravel(none, 8);
+  SetFilterTravel(on, 8);
+  SetFilterTravel(one, 8);
+  none.nearMeetingTries = 0;
+  one.nearMeetingTries = 1;  // exactly one near meeting, whatever it keeps
+  one.nearMeetingTriesPerKept = 0;
+  TMesh a, b, c;
+  std::unique_ptr<SurfaceProjector> ia, ib, ic;
+  ASSERT_TRUE(RemeshedCorpus(a, "knot1.off", n, &ia)) << "corpus mesh missing (run scripts/setup.sh)";
+  ASSERT_TRUE(RemeshedCorpus(b, "knot1.off", n, &ib));
+  ASSERT_TRUE(RemeshedCorpus(c, "knot1.off", n, &ic));
+  const ReductionReport ra = RunValid(a, *ia, none), rb = RunValid(b, *ib, on), rc = RunValid(c, *ic, one);
+  ASSERT_FALSE(::testing::Test::HasFailure());
+  std::printf("knot1 at %d vertices, travel 8: %d left without near meetings; with: %d of %d kept in %d rounds, %d "
+              "left; one try: %d of %d, %d left\n",
+              n, ra.irregularAfter, rb.nearMeetingsKept, rb.nearMeetings, rb.meetingRounds, rb.irregularAfter,
+              rc.nearMeetingsKept, rc.nearMeetings, rc.irregularAfter);
+  EXPECT_EQ(ra.nearMeetings, 0);
+  EXPECT_EQ(ra.nearMeetingsKept, 0);
+  EXPECT_GT(rb.nearMeetingsKept, 0);
+  EXPECT_LE(rb.nearMeetingsKept, rb.nearMeetings);
+  EXPECT_LE(rb.nearMeetings, on.nearMeetingTries + on.nearMeetingTriesPerKept * rb.nearMeetingsKept);
+  EXPECT_EQ(rc.nearMeetings, 1);
+  EXPECT_GE(rb.meetingRounds, 2);  // a round that removed something is followed by another
+  EXPECT_LE(rb.meetingRounds, on.farMeetingRounds);
+  EXPECT_LT(rb.irregularAfter, ra.irregularAfter);
+  for (const ReductionReport* r : {&ra, &rb, &rc}) EXPECT_LE(r->hausdorffPercent, on.hausdorffBudgetPercent);
+}
+
 // Far meetings (AutomaticReduction::FarMeetings): after the sweeps, the interior irregular
 // vertices with no partner within maxTravel edges but one within farMeetingReach x maxTravel
-// get one more turn with the longer travel. Off, none is tried; on, only such vertices can be
-// tried (they are found on the mesh the sweeps leave, which is the same either way: the far
-// meetings come after the sweeps), some are kept, fewer irregular vertices are left, the mesh
-// stays valid and within the budget, and a vertex left as "no partner" has none within the
-// far meetings' reach (that reach was searched). knot1 at 3000 vertices, travel 6.
+// get one more turn with the longer travel. Off, none is tried; on (one round, no near
+// meetings), only such vertices can be tried (they are found on the mesh the sweeps leave,
+// which is the same either way: the far meetings come after the sweeps), some are kept, fewer
+// irregular vertices are left, the mesh stays valid and within the budget, and a vertex left as
+// "no partner" has none within the far meetings' reach (that reach was searched). knot1 at
+// 3000 vertices, travel 6.
 TEST(AutomaticReduction, FarMeetingsTryOnlyPartnersJustBeyondTheTravelAndCancelSome) {
   // at 3000 vertices the default travel reaches across most of the knot: a shorter one leaves
   // partners beyond it (as the default does at 20K)
@@ -1242,6 +1280,8 @@ TEST(AutomaticReduction, FarMeetingsTryOnlyPartnersJustBeyondTheTravelAndCancelS
   SetFilterTravel(off, 6);
   SetFilterTravel(on, 6);
   off.farMeetingReach = 0;
+  on.farMeetingRounds = 1;
+  on.nearMeetingTries = 0;
   TMesh a, b;
   std::unique_ptr<SurfaceProjector> ia, ib;
   ASSERT_TRUE(RemeshedCorpus(a, "knot1.off", n, &ia)) << "corpus mesh missing (run scripts/setup.sh)";
@@ -1250,6 +1290,9 @@ TEST(AutomaticReduction, FarMeetingsTryOnlyPartnersJustBeyondTheTravelAndCancelS
   ASSERT_FALSE(::testing::Test::HasFailure());
   EXPECT_EQ(ra.farMeetings, 0);
   EXPECT_EQ(ra.farMeetingsKept, 0);
+  EXPECT_EQ(ra.nearMeetings, 0);  // they are turns of the far meetings' stage
+  EXPECT_EQ(rb.nearMeetings, 0);
+  EXPECT_EQ(rb.meetingRounds, 1);
   // the candidates, found on the result without far meetings (the same topology as the mesh
   // the sweeps leave; the final relaxation moves no edge)
   const int travel = ra.travel, reach = int(std::lround(on.farMeetingReach * travel));

@@ -273,6 +273,17 @@ TEST(LeftoverReasons, ReducedBunnyCountsAddUpAndTheEarTipIsACap) {
     EXPECT_EQ(a.flags, b.flags) << v.vertex;
     EXPECT_EQ(a.reason, v.reason) << v.vertex;
     withPartner += a.partner >= 0;
+    // ShapeOf (the far meetings' filter): ExplainVertex's shape tests and partner, nothing else
+    const LeftoverVertex sh = shared.ShapeOf(v.vertex);
+    const unsigned shapeBits = (1u << int(LeftoverReason::Cap)) | (1u << int(LeftoverReason::Saddle)) |
+                               (1u << int(LeftoverReason::Thin));
+    EXPECT_EQ(sh.flags & ~shapeBits, 0u) << v.vertex;
+    EXPECT_EQ(sh.flags, a.flags & shapeBits) << v.vertex;
+    EXPECT_EQ(sh.partner, a.partner) << v.vertex;
+    EXPECT_EQ(sh.partnerDistance, a.partnerDistance) << v.vertex;
+    EXPECT_EQ(sh.curvature, a.curvature) << v.vertex;
+    EXPECT_EQ(sh.curvatureRings, a.curvatureRings) << v.vertex;
+    EXPECT_EQ(sh.thickness, a.thickness) << v.vertex;
   }
   EXPECT_GT(withPartner, 0);
   EXPECT_LT(withPartner, r.total);  // both answers occur

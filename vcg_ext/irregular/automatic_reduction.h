@@ -11,7 +11,9 @@
 //      stretched dislocations are split and absorbed (pair_transport.h);
 //   4. steps 2-3 repeat with a growing travel distance;
 //   5. far meetings: a vertex left with no partner within the travel, but one a little
-//      farther, gets one more turn with a longer travel (FarMeetings);
+//      farther, gets one more turn with a longer travel (FarMeetings); so does one with a
+//      partner within the travel that the shape does not need, while such near meetings pay
+//      off; in rounds, while a round removes something (Meetings);
 //   6. a final relaxation (sec. 8) evens out the triangles.
 // Every edit is relaxed locally and passes the edit guard (edit_guard.h: angle bound,
 // Hausdorff budget, frozen region) or is undone. Settings: reduction_options.h; the run's
@@ -196,7 +198,7 @@ class AutomaticReduction {
         travel = opt_.maxTravel;
       }
     }
-    if (go && !state_.Done()) go = FarMeetings(rep);
+    if (go && !state_.Done()) go = Meetings(rep);
     if (rep.interrupted) return;
     // A stage after the sweeps (e.g. on the boundary) goes here: it runs even when the time
     // limit stopped the editing only if it is cheap; the final relaxation always does.
@@ -243,21 +245,48 @@ class AutomaticReduction {
     return true;
   }
 
-  /// Far meetings, once after the sweeps: an interior irregular vertex left with no partner
-  /// within the travel (leftover_reasons.h: no irregular vertex it could cancel with within
-  /// maxTravel edges) but one within opt.farMeetingReach x maxTravel gets one more turn, whose
+  /// Far and near meetings, after the sweeps, in up to opt.farMeetingRounds rounds: a round
+  /// that removes nothing ends them (a later round tries only what changed, FarMeetings).
+  /// False if interrupted or out of time.
+  bool Meetings(ReductionReport& rep) {
+    MeetingEffort near;
+    for (int round = 0; round < std::max(1, opt_.farMeetingRounds) && !state_.Done(); ++round) {
+      const int before = state_.Irregular();
+      ++rep.meetingRounds;
+      if (!FarMeetings(rep, round, near)) return false;
+      if (state_.Irregular() >= before) break;
+    }
+    return true;
+  }
+
+  /// The near meetings' bound of effort over all rounds (ReductionOptions::nearMeetingTries).
+  struct MeetingEffort {
+    int tried = 0, kept = 0;
+    bool Open(const ReductionOptions& o) const {
+      return o.nearMeetingTries > 0 && tried < o.nearMeetingTries + o.nearMeetingTriesPerKept * kept;
+    }
+  };
+
+  /// One round of far meetings: an interior irregular vertex left with no partner within the
+  /// travel (leftover_reasons.h: no irregular vertex it could cancel with within maxTravel
+  /// edges) but one within opt.farMeetingReach x maxTravel gets one more turn, whose
   /// transports and split-and-absorb (sec. 7.1, 7.2) walk and carry the pairs they generate
   /// opt.farMeetingTravel x maxTravel edges. The sweeps cannot do it: a stretched dislocation
   /// whose v5 and v7 lie farther apart than the travel is never walked, and giving every turn
   /// of every sweep the longer travel costs what the thorough setting costs (knot1 at 20K:
-  /// 3.4x the peer's time). The candidates are found in one pass over the vertices, each with a
-  /// search of the reach's rings; each turn costs what a sweep's turn with the longer travel
-  /// costs. False if interrupted or out of time.
-  bool FarMeetings(ReductionReport& rep) {
+  /// 3.4x the peer's time). Near meetings: a vertex with a partner within the travel that the
+  /// sweeps left gets the same turn, unless the shape needs it (a cap or saddle by curvature,
+  /// a thin part), while they pay their way (MeetingEffort). A later round (round > 0) tries
+  /// only a vertex whose turn did not fail before, or with an edit kept within maxTravel
+  /// edges since (the search is deterministic: unchanged, it would fail again). The candidates
+  /// are found in one pass over the vertices, each with a search of the reach's rings; each
+  /// turn costs what a sweep's turn with the longer travel costs. False if interrupted or out
+  /// of time.
+  bool FarMeetings(ReductionReport& rep, int round, MeetingEffort& near) {
     const int reach = FarReach();
     if (reach <= opt_.maxTravel || opt_.farMeetingTravel <= 0) return true;
     const int far = std::max(reach, int(std::lround(opt_.farMeetingTravel * opt_.maxTravel)));
-    std::vector<int> candidates;
+    std::vector<std::pair<int, bool>> candidates;  // (vertex, near meeting)
     {
       LeftoverOptions lo;
       lo.reach = reach;
@@ -265,25 +294,42 @@ class AutomaticReduction {
       for (size_t i = 0; i < m_.vert.size(); ++i) {
         const int v = int(i);
         if (!state_.IsInteriorIrregular(v) || state_.Frozen(v) || state_.GivenUp(v)) continue;
+        if (round > 0 && state_.UnchangedSinceFailure(v, opt_.maxTravel)) continue;
         // the nearest partner (a breadth-first search): within the reach, beyond the travel
         int distance = -1;
-        if (within.PartnerOf(v, &distance) >= 0 && distance > opt_.maxTravel) candidates.push_back(v);
+        if (within.PartnerOf(v, &distance) < 0) continue;
+        if (distance > opt_.maxTravel) {
+          candidates.emplace_back(v, false);
+        } else if (near.Open(opt_)) {
+          const LeftoverVertex shape = within.ShapeOf(v);
+          if (!shape.Has(LeftoverReason::Cap) && !shape.Has(LeftoverReason::Saddle) &&
+              !shape.Has(LeftoverReason::Thin))
+            candidates.emplace_back(v, true);
+        }
       }
     }
     for (size_t i = 0; i < candidates.size(); ++i) {
-      const int v = candidates[i];
+      const int v = candidates[i].first;
+      const bool isNear = candidates[i].second;
       if (!Stage(rep, int(80 + 10 * i / candidates.size()), "Meeting far partners")) return false;
       if (state_.Done()) return true;
-      // an earlier far meeting may have cancelled or moved it
+      // an earlier meeting may have cancelled or moved it
       if (!state_.IsInteriorIrregular(v) || state_.Frozen(v)) continue;
-      ++rep.farMeetings;
+      if (isNear && !near.Open(opt_)) continue;
+      ++(isNear ? rep.nearMeetings : rep.farMeetings);
+      if (isNear) ++near.tried;
       state_.BeginTurn(v);
       // a turn without the repeated-failure check (every candidate failed at the shorter travel)
       const bool kept =
           cancel_.CancelAround(rep, v) || (!state_.TurnExhausted() && TravelStrategies(rep, v, far, far, far));
       state_.EndTurn();
-      if (kept) ++rep.farMeetingsKept;
-      else state_.Tried(v);  // a leftover reason of "no route" (or budget), not "untried"
+      if (kept) {
+        ++(isNear ? rep.nearMeetingsKept : rep.farMeetingsKept);
+        if (isNear) ++near.kept;
+      } else {
+        state_.Tried(v);   // a leftover reason of "no route" (or budget), not "untried"
+        state_.Failed(v);  // for the next round
+      }
     }
     return true;
   }

@@ -183,16 +183,7 @@ class LeftoverAnalysis {
     if (prot) set(LeftoverReason::Protected);
     if (!s.boundary) NearestPartner(v, &lv.partner, &lv.partnerDistance, &lv.nearestIrregular);
     if (!s.boundary && lv.partner < 0) set(LeftoverReason::NoPartner);
-    // curvature over the vertex's share of the surface
-    const int far = lv.nearestIrregular < 0 ? opt_.maxCurvatureRings : lv.nearestIrregular / 2;
-    lv.curvatureRings = std::max(opt_.curvatureRings, std::min(opt_.maxCurvatureRings, far));
-    lv.curvature = AngleDefectAround(v, lv.curvatureRings);
-    const double need = opt_.curvatureShare * M_PI / 3;
-    const int excess = lv.valence - regular;  // < 0: a v5-like vertex, > 0: v7-like
-    if (!s.boundary && excess < 0 && lv.curvature >= need) set(LeftoverReason::Cap);
-    if (!s.boundary && excess > 0 && lv.curvature <= -need) set(LeftoverReason::Saddle);
-    lv.thickness = Thickness(v, s);
-    if (lv.thickness < opt_.thinEdges) set(LeftoverReason::Thin);
+    ShapeTests(v, s, regular, lv);
     if (opt_.undone) {
       std::unordered_map<int, int> ring = Rings(v, opt_.undoneRings);
       for (auto& kv : ring)
@@ -206,6 +197,21 @@ class LeftoverAnalysis {
         lv.reason = LeftoverReason(r);
         break;
       }
+    return lv;
+  }
+
+  /// Only the tests of the shape (cap, saddle, thin: flags, curvature, thickness) and the
+  /// nearest partner, for an interior vertex: whether the surface needs v where it is, without
+  /// the driver's records (undone edits, tries). For choosing which vertices deserve more
+  /// effort (AutomaticReduction::FarMeetings).
+  LeftoverVertex ShapeOf(int v) {
+    LeftoverVertex lv;
+    lv.vertex = v;
+    VertexStar<MeshType> s = StarOf<MeshType>(V(v));
+    lv.valence = s.Valence();
+    lv.boundary = s.boundary;
+    if (!s.boundary) NearestPartner(v, &lv.partner, &lv.partnerDistance, &lv.nearestIrregular);
+    ShapeTests(v, s, RegularValenceOf(s), lv);
     return lv;
   }
 
@@ -268,6 +274,21 @@ class LeftoverAnalysis {
   bool Live(int v) const { return v >= 0 && size_t(v) < m_.vert.size() && !m_.vert[size_t(v)].IsD() && m_.vert[size_t(v)].cVFp(); }
   bool Frozen(int v) const { return opt_.frozen && size_t(v) < opt_.frozen->size() && (*opt_.frozen)[size_t(v)]; }
   bool Tried(int v) const { return opt_.tried && size_t(v) < opt_.tried->size() && (*opt_.tried)[size_t(v)]; }
+
+  /// The cap, saddle and thin tests of ExplainVertex on lv (its valence, boundary and
+  /// nearestIrregular set): curvature over the vertex's share of the surface, and thickness.
+  void ShapeTests(int v, const VertexStar<MeshType>& s, int regular, LeftoverVertex& lv) {
+    auto set = [&](LeftoverReason r) { lv.flags |= 1u << int(r); };
+    const int far = lv.nearestIrregular < 0 ? opt_.maxCurvatureRings : lv.nearestIrregular / 2;
+    lv.curvatureRings = std::max(opt_.curvatureRings, std::min(opt_.maxCurvatureRings, far));
+    lv.curvature = AngleDefectAround(v, lv.curvatureRings);
+    const double need = opt_.curvatureShare * M_PI / 3;
+    const int excess = lv.valence - regular;  // < 0: a v5-like vertex, > 0: v7-like
+    if (!s.boundary && excess < 0 && lv.curvature >= need) set(LeftoverReason::Cap);
+    if (!s.boundary && excess > 0 && lv.curvature <= -need) set(LeftoverReason::Saddle);
+    lv.thickness = Thickness(v, s);
+    if (lv.thickness < opt_.thinEdges) set(LeftoverReason::Thin);
+  }
 
   /// Area-weighted unit normal of a star.
   static CoordType Normal(const VertexStar<MeshType>& s) {

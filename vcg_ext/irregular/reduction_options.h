@@ -135,10 +135,25 @@ struct ReductionOptions {
                                         ///< this x maxTravel gets one more turn, a far meeting (AutomaticReduction::
                                         ///< FarMeetings); 0: none. bunny00 / knot1 / elephant at 20K (native bench):
                                         ///< the partners of the far meetings kept lay 13-19 edges away (one at 21)
-  double farMeetingTravel = 2;          ///< default 2: ... whose split-and-absorb walks up to this x maxTravel
+  double farMeetingTravel = 3;          ///< default 3: ... whose split-and-absorb walks up to this x maxTravel
                                         ///< edges and transports the pairs it generates as far: with the pairs
                                         ///< transported only maxTravel, no far meeting was kept (knot1: 0 of 33);
                                         ///< at 1.5 x, 4 / 4 / 3 instead of 6 / 6 / 5 (bunny00 / knot1 / elephant)
+                                        ///< at 2 x; with the rounds and near meetings (0.9.20) knot1 at 20K kept 26
+                                        ///< at 2 x and 20 at 3 x, bunny00 / mushroom / the elephant the same
+  int farMeetingRounds = 3;             ///< default 3 (not a filter parameter): rounds of far meetings; a round
+                                        ///< after the first gives a turn only to a vertex it did not try before, or
+                                        ///< one with an edit kept within maxTravel edges since its turn failed, and
+                                        ///< the rounds stop after one that removes nothing (1: one round)
+  int nearMeetingTries = 8;             ///< default 8 (not a filter parameter): the far meetings also give a turn
+                                        ///< to vertices with a partner within maxTravel that the sweeps could not
+                                        ///< cancel (near meetings: the longer walk finds routes the travel did
+                                        ///< not), except a cap or saddle whose curvature needs it and a thin part
+                                        ///< (leftover_reasons.h; bunny00 / knot1 / the bull at 20K: none of 6 / 1 /
+                                        ///< 105 such turns kept); they must pay their way: the stage stops them
+                                        ///< once this many plus nearMeetingTriesPerKept per kept one were tried
+                                        ///< (the bull: 2 of 185 kept, a tenth of its time). 0: none
+  int nearMeetingTriesPerKept = 4;      ///< default 4 (not a filter parameter): see nearMeetingTries
   RelaxMode finalRelax = RelaxMode::Local;  ///< default Local: final relaxation of the whole mesh: local sweeps,
                                             ///< or a global solve (eq. 5) followed by local sweeps
   int globalRelaxRounds = 3;            ///< default 3: solve-and-project rounds of the final global relaxation
@@ -207,6 +222,9 @@ struct ReductionReport {
                               ///< (partialAbsorption)
   int farMeetings = 0;        ///< far meetings tried (ReductionOptions::farMeetingReach)
   int farMeetingsKept = 0;    ///< ... and kept (each a transport or split-and-absorb that cancelled)
+  int nearMeetings = 0;       ///< near meetings tried (ReductionOptions::nearMeetingTries)
+  int nearMeetingsKept = 0;   ///< ... and kept
+  int meetingRounds = 0;      ///< rounds of far and near meetings run (ReductionOptions::farMeetingRounds)
   int undone = 0;             ///< edits undone (angle, Hausdorff or fold), not counting those inside a
                               ///< split-and-absorb that was undone as a whole
   // The guard's refusals by reason count every refusal, those inside an undone
