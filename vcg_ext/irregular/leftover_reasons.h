@@ -166,24 +166,17 @@ class LeftoverAnalysis {
 
   /// The reason for one vertex (see the header comment).
   LeftoverVertex ExplainVertex(int v) {
-    LeftoverVertex lv;
-    lv.vertex = v;
-    VertexStar<MeshType> s = StarOf<MeshType>(V(v));
-    lv.valence = s.Valence();
-    lv.boundary = s.boundary;
-    const int regular = RegularValenceOf(s);
+    LeftoverVertex lv = ShapeOf(v);  // star, partner, cap, saddle, thin
     auto set = [&](LeftoverReason r) { lv.flags |= 1u << int(r); };
-    bool nearBoundary = s.boundary;
+    bool nearBoundary = lv.boundary;
     bool prot = Frozen(v);
-    for (VertexType* n : s.neighbors) {
+    for (VertexType* n : StarOf<MeshType>(V(v)).neighbors) {
       nearBoundary = nearBoundary || StarOf<MeshType>(n).boundary;
       prot = prot || Frozen(Index(n));
     }
     if (nearBoundary) set(LeftoverReason::Boundary);
     if (prot) set(LeftoverReason::Protected);
-    if (!s.boundary) NearestPartner(v, &lv.partner, &lv.partnerDistance, &lv.nearestIrregular);
-    if (!s.boundary && lv.partner < 0) set(LeftoverReason::NoPartner);
-    ShapeTests(v, s, regular, lv);
+    if (!lv.boundary && lv.partner < 0) set(LeftoverReason::NoPartner);
     if (opt_.undone) {
       std::unordered_map<int, int> ring = Rings(v, opt_.undoneRings);
       for (auto& kv : ring)
