@@ -59,7 +59,7 @@ class AutomaticReduction {
   AutomaticReduction(MeshType& m, const SurfaceProjector& original, ReductionOptions opt = ReductionOptions())
       : m_(m),
         original_(original),
-        opt_(ScaleTravel(std::move(opt), m)),
+        opt_(ScaleToResolution(std::move(opt), m.vn)),
         ed_(m),
         crease_(CreaseLineVertices(m, opt_.creaseDeg, opt_.creaseMinEdges)),
         inputBoundary_(m),
@@ -363,21 +363,6 @@ class AutomaticReduction {
     if (ed_.Valence(v) == 5 && transport_.Transport(rep, v, travel)) return true;
     if (state_.TurnExhausted()) return false;
     return transport_.Isolated(v) && transport_.SplitAndAbsorb(rep, v, radius, innerTravel);
-  }
-
-  /// opt with maxTravel and glideTravel scaled to m's resolution: a mesh finer than
-  /// travelReferenceVertices needs sqrt(V / reference) times more steps for the same distance
-  /// on the surface (most of what bunny00 at 80K vertices kept at 12 steps had no partner
-  /// within them: 76 of 194), up to opt.maxTravelScale times: a transport's cost grows with
-  /// its travel, so an unbounded scale makes the run superlinear in the mesh size.
-  static ReductionOptions ScaleTravel(ReductionOptions opt, const MeshType& m) {
-    if (opt.travelReferenceVertices > 0 && m.vn > opt.travelReferenceVertices) {
-      double s = std::sqrt(double(m.vn) / double(opt.travelReferenceVertices));
-      if (opt.maxTravelScale > 0) s = std::min(s, opt.maxTravelScale);
-      opt.maxTravel = int(std::lround(opt.maxTravel * s));
-      opt.glideTravel = int(std::lround(opt.glideTravel * s));
-    }
-    return opt;
   }
 
   static CompositeOptions Quiet(const std::vector<char>* crease) {

@@ -108,7 +108,8 @@ struct ReductionOptions {
                                         ///< straight on looking for a partner
   int travelReferenceVertices = 20000;  ///< default 20000: maxTravel and glideTravel are steps on a mesh of this
                                         ///< many vertices; on a finer one the same distance on the surface is more
-                                        ///< steps, and both grow by sqrt(V / this) (never shrink; 0: fixed).
+                                        ///< steps, and both grow by sqrt(V / this), as does nearMeetingTries
+                                        ///< (ScaleToResolution; never shrink; 0: fixed).
                                         ///< bunny00 remeshed by the peer to 80K (72K vertices): 194 left at 12
                                         ///< steps (0.9.4), 90 at the scaled 24 (0.9.5)
   double maxTravelScale = 2;            ///< default 2 (not a filter parameter): ... by at most this factor (80K
@@ -152,7 +153,9 @@ struct ReductionOptions {
                                         ///< (leftover_reasons.h; bunny00 / knot1 / the bull at 20K: none of 6 / 1 /
                                         ///< 105 such turns kept); they must pay their way: the stage stops them
                                         ///< once this many plus nearMeetingTriesPerKept per kept one were tried
-                                        ///< (the bull: 2 of 185 kept, a tenth of its time). 0: none
+                                        ///< (the bull: 2 of 185 kept, a tenth of its time); on a mesh finer
+                                        ///< than travelReferenceVertices it grows as the travel does
+                                        ///< (ScaleToResolution). 0: none
   int nearMeetingTriesPerKept = 4;      ///< default 4 (not a filter parameter): see nearMeetingTries
   RelaxMode finalRelax = RelaxMode::Local;  ///< default Local: final relaxation of the whole mesh: local sweeps,
                                             ///< or a global solve (eq. 5) followed by local sweeps
@@ -206,6 +209,26 @@ inline void SetFilterTravel(ReductionOptions& opt, int maxTravel) {
   opt.maxTravel = maxTravel;
   opt.glideTravel = 4 * maxTravel;
   opt.maxRefusalsPerRegion = std::max(ReductionOptions().maxRefusalsPerRegion, maxTravel);
+}
+
+/// opt scaled to a mesh of `vertices` vertices: a mesh finer than travelReferenceVertices needs
+/// s = sqrt(V / reference) times more steps for the same distance on the surface, so maxTravel
+/// and glideTravel grow by s (most of what bunny00 at 80K vertices kept at 12 steps had no
+/// partner within them: 76 of 194), up to maxTravelScale times: a transport's cost grows with
+/// its travel, so an unbounded scale makes the run superlinear in the mesh size. The near
+/// meetings' bound (nearMeetingTries) grows by s too: the same surface holds s^2 times the
+/// leftovers' candidates, and at 80K vertices the unscaled 8 tries stopped them before the
+/// first kept one (bunny00, the peer's 80K: 80 left, 0 of 8 kept; with 16, 70 left, 5 of 29
+/// kept, and every candidate tried; the same time). Never shrinks: a coarser mesh keeps opt.
+inline ReductionOptions ScaleToResolution(ReductionOptions opt, int vertices) {
+  if (opt.travelReferenceVertices > 0 && vertices > opt.travelReferenceVertices) {
+    double s = std::sqrt(double(vertices) / double(opt.travelReferenceVertices));
+    if (opt.maxTravelScale > 0) s = std::min(s, opt.maxTravelScale);
+    opt.maxTravel = int(std::lround(opt.maxTravel * s));
+    opt.glideTravel = int(std::lround(opt.glideTravel * s));
+    opt.nearMeetingTries = int(std::lround(opt.nearMeetingTries * s));
+  }
+  return opt;
 }
 
 struct ReductionReport {
