@@ -922,6 +922,74 @@ TEST(ReductionParts, CutsCreaseFlagsCreaseCutsAndTheyStayCutAfterRelaxation) {
   EXPECT_EQ(stillCut, (flagged + 3) / 4);
 }
 
+// The guard remembers, per input sample, the face that last showed it harmless (its witness):
+// while that face is still within the sample's bound the sample is harmless, and no search is
+// made. On the camel at 6K (thin legs, ears and tail), every eighth vertex is pushed along its
+// normal by 0.6, 1.2 or 2 budgets, each push judged by a guard that has seen all the pushes
+// before (its witnesses) and by a fresh one, then undone:
+//   * the witnesses never refuse what the fresh guard passes (they only skip samples);
+//   * they are used, and they pass some pushes the fresh guard refuses: its search looks only
+//     at the faces around the edit, so a sample on a sharp edge of a thin part, whose own face
+//     lies outside them, was closest to an edited face across the part (with a face normal of
+//     the sharp edge on that side) although its own face lies within its bound;
+//   * every push the witnesses pass leaves every input sample on a sharp edge near it within
+//     the budget of the whole pushed mesh (an independent measure: a projector of that mesh).
+TEST(ReductionParts, SampleWitnessesPassOnlyWhatTheWholeMeshPasses) {
+  TMesh m;
+  std::unique_ptr<SurfaceProjector> raw;
+  ASSERT_TRUE(RemeshedCorpus(m, "camel.off", 6000, &raw)) << "corpus mesh missing (run scripts/setup.sh)";
+  SurfaceProjector input(m);
+  ReductionOptions opt;
+  MeshEditor<TMesh> ed(m);
+  ReductionState<TMesh> state(m, ed, opt);
+  EditGuard<TMesh> seasoned(m, input, opt, ed, state);
+  const double diag = double(input.Diagonal());
+  const double budget = seasoned.Budget();
+  const double creaseBudget = opt.creaseBudgetPercent / 100.0 * diag;
+  const double full = opt.hausdorffBudgetPercent / 100.0 * diag;  // the budget before the tenth kept back
+  const std::vector<vcg::Point3f> sharp = CreaseSamples(m, opt.sharpEdgeDeg);
+  const double pushes[] = {0.6, 1.2, 2.0};
+  int judged = 0, passed = 0, savedRefusals = 0, freshStricter = 0;
+  double worstPassed = 0;
+  for (size_t i = 0; i < m.vert.size(); i += 8) {
+    const int v = int(i);
+    if (!ed.IsLive(v) || ed.IsBoundary(v)) continue;
+    vcg::Point3d n(0, 0, 0);
+    for (auto& c : ed.Star(v).corners) n += vcg::Point3d::Construct(vcg::TriangleNormal(*c.f));
+    if (n.Norm() == 0) continue;
+    n.Normalize();
+    const double push = pushes[judged % 3] * budget;
+    auto cp = ed.Mark();
+    ed.journal().SaveVertex(ed.V(v));
+    m.vert[i].P() += TMesh::CoordType::Construct(n * push);
+    double crease = 0, freshCrease = 0;
+    const bool pass = seasoned.DeviationAround({v}, &crease) <= budget && crease <= creaseBudget;
+    EditGuard<TMesh> fresh(m, input, opt, ed, state);
+    const bool freshPass = fresh.DeviationAround({v}, &freshCrease) <= budget && freshCrease <= creaseBudget;
+    ++judged;
+    passed += pass;
+    freshStricter += freshPass && !pass;
+    if (pass && !freshPass) ++savedRefusals;
+    if (pass) {
+      const vcg::Point3f at = vcg::Point3f::Construct(m.vert[i].P());
+      std::vector<vcg::Point3f> near;
+      for (const auto& p : sharp)
+        if (vcg::Distance(p, at) < float(3 * full + 2 * push)) near.push_back(p);
+      if (!near.empty()) worstPassed = std::max(worstPassed, FarthestPercent(m, near, diag) / 100.0 * diag);
+    }
+    ed.RollbackTo(cp);
+  }
+  std::printf("camel at 6K: %d pushes judged, %d passed, %d of them refused by a fresh guard; %zu witness hits; "
+              "worst sharp sample of a passed push %.3g (budget %.3g)\n",
+              judged, passed, savedRefusals, seasoned.WitnessHits(), worstPassed, full);
+  EXPECT_GT(judged, 600);
+  EXPECT_EQ(freshStricter, 0);
+  EXPECT_GT(seasoned.WitnessHits(), 0u);
+  EXPECT_GT(savedRefusals, 0);
+  EXPECT_LT(passed, judged);  // the 2-budget pushes near sharp edges are refused
+  EXPECT_LE(worstPassed, full);
+}
+
 // Crease vertices are never relaxed, so an edit next to a crease cannot even out the triangles
 // it squeezes there: those triangles may go creaseAngleSlackDeg under the minimum angle. The
 // slack must pay (fewer irregular vertices left) without giving up the creases or the angles

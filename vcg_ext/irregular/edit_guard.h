@@ -66,6 +66,9 @@ class EditGuard {
   }
 
   double Budget() const { return budget_; }
+  /// Input samples that a witness showed harmless (Deviation), over the guard's life: for the
+  /// tests, which check that the shortcut is taken.
+  size_t WitnessHits() const { return witnessHits_; }
   Editor& ed() { return ed_; }
   ReductionState<MeshType>& state() { return state_; }
 
@@ -327,6 +330,25 @@ class EditGuard {
           }
       }
     }
+    // A sample that a face of the mesh showed harmless before (sampleWitness_) usually still
+    // is: if that face, wherever it is, is still within the sample's bound (and faces its
+    // side), the sample is within it of the edited surface, so harmless (the search below
+    // asks only for some face within the bound). Two gains (0.9.21):
+    //   * edits that keep failing in one place test the same samples again and again: when
+    //     every sample near the edit has such a witness, the face hash below is not built;
+    //   * the search sees only the faces around the edit: a sample on a sharp edge of a thin
+    //     part whose own face lies outside them was closest to an edited face across the part
+    //     (one of the sharp edge's face normals faces it) and refused the edit, although its
+    //     own face lies within its bound. Its witness passes it, as the whole mesh would.
+    //     Native bench at 20K: the bull 623 -> 531 left, the camel 324 -> 208, armadillo
+    //     186 -> 144; 2200 -> 1725 refusals for the distance on the bull.
+    {
+      size_t k = 0;
+      for (int i : near)
+        if (!Witnessed(i)) near[k++] = i;
+      witnessHits_ += near.size() - k;
+      near.resize(k);
+    }
     if (near.empty()) return mx;
     // The faces are hashed on a grid so each sample is compared with the faces around it
     // only: O(region) for any edit size. Faces of one more ring are included so a sample by the
@@ -403,8 +425,11 @@ class EditGuard {
     for (int i : near) {
       const vcg::Point3f& p = originalSamples_.Point(i);
       const bool onCrease = originalSamples_.Tag(i) != 0;
-      const float bound = float(onCrease ? std::min(budget_, creaseBudget_) : budget_);
-      if (sampleHint >= 0 && harmless(sampleHint, p, bound)) continue;
+      const float bound = SampleBound(i);
+      if (sampleHint >= 0 && harmless(sampleHint, p, bound)) {
+        sampleWitness_[size_t(i)] = int(all[size_t(sampleHint)] - &m_.face[0]);
+        continue;
+      }
       if (!originalSamples_.AnyNormal(i, facesSome)) continue;
       float best = std::numeric_limits<float>::max();
       int bestFace = -1;
@@ -425,6 +450,7 @@ class EditGuard {
               vcg::TrianglePointDistance(tri[size_t(t)], p, d, q);
               if (d <= bound) {
                 sampleHint = t;
+                sampleWitness_[size_t(i)] = int(all[size_t(t)] - &m_.face[0]);
                 done = true;
                 break;
               }
@@ -444,6 +470,26 @@ class EditGuard {
       return mx;
     }
     return mx;
+  }
+
+  /// The bound of input sample i: the budget, on a crease line the crease budget if smaller.
+  float SampleBound(int i) const {
+    return float(originalSamples_.Tag(i) != 0 ? std::min(budget_, creaseBudget_) : budget_);
+  }
+
+  /// Is input sample i within its bound of the live face that last showed it harmless?
+  bool Witnessed(int i) const {
+    const int w = sampleWitness_[size_t(i)];
+    if (w < 0 || size_t(w) >= m_.face.size() || m_.face[size_t(w)].IsD()) return false;
+    const FaceType& f = m_.face[size_t(w)];
+    const vcg::Triangle3<float> t(vcg::Point3f::Construct(f.cP(0)), vcg::Point3f::Construct(f.cP(1)),
+                                  vcg::Point3f::Construct(f.cP(2)));
+    const vcg::Point3f n = (t.P(1) - t.P(0)) ^ (t.P(2) - t.P(0));
+    if (!originalSamples_.AnyNormal(i, [&](const vcg::Point3f& sn) { return sn.dot(n) > 0; })) return false;
+    float d;
+    vcg::Point3f q;
+    vcg::TrianglePointDistance(t, originalSamples_.Point(i), d, q);
+    return d <= SampleBound(i);
   }
 
   /// The seeds an edit has not deleted (a collapse removes vertices that stay in `touched`).
@@ -470,6 +516,7 @@ class EditGuard {
     // and face around it), and the grid merges them (sample_grid.h); the tag keeps crease
     // samples apart (their bound is the crease budget)
     originalSamples_.Build(samples, normals, h, onCrease);
+    sampleWitness_.assign(originalSamples_.Size(), -1);
   }
 
   /// Ends and midpoints of the edges of m whose dihedral angle exceeds angleDeg, with the
@@ -570,6 +617,8 @@ class EditGuard {
   std::vector<const FaceType*> changed_;  ///< ... and its faces
   std::vector<std::pair<uint64_t, int>> faceCells_;  ///< DeviationAround's faces by grid cell
   std::vector<vcg::Point3f> changedNormals_;          ///< ... and its changed faces' normals
+  std::vector<int> sampleWitness_;  ///< per input sample: the face (index) that last showed it harmless, or -1
+  size_t witnessHits_ = 0;          ///< samples a witness showed harmless (WitnessHits)
 };
 
 /// The scope of one guarded edit: remembers the checkpoint and the angle quality before;
