@@ -216,10 +216,10 @@ inline void SetFilterTravel(ReductionOptions& opt, int maxTravel) {
 /// and glideTravel grow by s (most of what bunny00 at 80K vertices kept at 12 steps had no
 /// partner within them: 76 of 194), up to maxTravelScale times: a transport's cost grows with
 /// its travel, so an unbounded scale makes the run superlinear in the mesh size. The near
-/// meetings' bound (nearMeetingTries) grows by s too: the same surface holds s^2 times the
-/// leftovers' candidates, and at 80K vertices the unscaled 8 tries stopped them before the
-/// first kept one (bunny00, the peer's 80K: 80 left, 0 of 8 kept; with 16, 70 left, 5 of 29
-/// kept, and every candidate tried; the same time). Never shrinks: a coarser mesh keeps opt.
+/// meetings' bound (nearMeetingTries) grows by s too: a finer mesh leaves more candidates for
+/// them (bunny00, the peer's outputs: 29 at 80K, 4 at 20K), and at 80K the unscaled 8 tries
+/// stopped them before the first kept one (80 left, 0 of 8 kept; with 16, 70 left, 5 of 29
+/// kept, every candidate tried; the same time). Never shrinks: a coarser mesh keeps opt.
 inline ReductionOptions ScaleToResolution(ReductionOptions opt, int vertices) {
   if (opt.travelReferenceVertices > 0 && vertices > opt.travelReferenceVertices) {
     double s = std::sqrt(double(vertices) / double(opt.travelReferenceVertices));
