@@ -463,7 +463,7 @@ class EditGuard {
       if (bestFace < 0) continue;
       if (size_t(bestFace) >= changed.size()) continue;  // closest to an unchanged face
       const vcg::Point3f& bestNormal = changedNormals[size_t(bestFace)];
-      if (!originalSamples_.AnyNormal(i, [&](const vcg::Point3f& n) { return n.dot(bestNormal) > 0; })) continue;
+      if (!Faces(i, bestNormal)) continue;
       // It was not harmless, so it is beyond its bound: the verdict is known
       mx = std::max(mx, double(best));
       if (onCrease) *crease = std::max(*crease, double(best));
@@ -477,6 +477,11 @@ class EditGuard {
     return float(originalSamples_.Tag(i) != 0 ? std::min(budget_, creaseBudget_) : budget_);
   }
 
+  /// Does a face of normal n face input sample i's side (one of its normals within 90 degrees)?
+  bool Faces(int i, const vcg::Point3f& n) const {
+    return originalSamples_.AnyNormal(i, [&](const vcg::Point3f& sn) { return sn.dot(n) > 0; });
+  }
+
   /// Is input sample i within its bound of the live face that last showed it harmless?
   bool Witnessed(int i) const {
     const int w = sampleWitness_[size_t(i)];
@@ -485,7 +490,7 @@ class EditGuard {
     const vcg::Triangle3<float> t(vcg::Point3f::Construct(f.cP(0)), vcg::Point3f::Construct(f.cP(1)),
                                   vcg::Point3f::Construct(f.cP(2)));
     const vcg::Point3f n = (t.P(1) - t.P(0)) ^ (t.P(2) - t.P(0));
-    if (!originalSamples_.AnyNormal(i, [&](const vcg::Point3f& sn) { return sn.dot(n) > 0; })) return false;
+    if (!Faces(i, n)) return false;
     float d;
     vcg::Point3f q;
     vcg::TrianglePointDistance(t, originalSamples_.Point(i), d, q);
