@@ -113,7 +113,9 @@ def test_cow_keeps_its_angles_after_the_angle_polish():
     the angle polish 1.21% stayed (0.9.11). Measured with it: 0.76%, 57 of 449 relaxed. Since
     0.9.21 the guard refuses fewer transports near the thin parts for no cause (sample
     witnesses), which leaves fewer sheared clusters: 13 relaxed here (native bench on the
-    benchmark's cow: 0.53% under 30 degrees without the polish, 0.44% with it, 14 of 196)."""
+    benchmark's cow: 0.53% under 30 degrees without the polish, 0.44% with it, 14 of 196); since
+    0.9.22 (witnesses seeded from the input) 8. The bound is the share; the polish must still
+    relax some."""
     length = 0.007596064858557005  # the benchmark's edge length for the cow at 20K
     ms = load("cow.off")
     t0 = tri(ms)
@@ -129,7 +131,7 @@ def test_cow_keeps_its_angles_after_the_angle_polish():
     after = fo.shape_measures(t1)["share_below_30"]
     assert after <= 0.01 and after < before, (before, after)
     assert out["percent_below_30_after"] == pytest.approx(100 * after, abs=1e-9)
-    assert 10 <= out["angle_polished"] <= out["angle_polish_below"], out["angle_polished"]
+    assert 0 < out["angle_polished"] <= out["angle_polish_below"], out["angle_polished"]
     assert out["hausdorff_percent"] <= 0.5
     assert fo.irregular_mask(t1).sum() <= 0.03 * len(t1.vertices)
 

@@ -924,16 +924,19 @@ TEST(ReductionParts, CutsCreaseFlagsCreaseCutsAndTheyStayCutAfterRelaxation) {
 
 // The guard remembers, per input sample, the face that last showed it harmless (its witness):
 // while that face is still within the sample's bound the sample is harmless, and no search is
-// made. On the camel at 6K (thin legs, ears and tail), every eighth vertex is pushed along its
-// normal by 0.6, 1.2 or 2 budgets, each push judged by a guard that has seen all the pushes
-// before (its witnesses) and by a fresh one, then undone:
-//   * the witnesses never refuse what the fresh guard passes (they only skip samples);
-//   * they are used, and they pass some pushes the fresh guard refuses: its search looks only
-//     at the faces around the edit, so a sample on a sharp edge of a thin part, whose own face
-//     lies outside them, was closest to an edited face across the part (with a face normal of
-//     the sharp edge on that side) although its own face lies within its bound;
-//   * every push the witnesses pass leaves every input sample on a sharp edge near it within
-//     the budget of the whole pushed mesh (an independent measure: a projector of that mesh).
+// made. A new guard's witnesses are seeded with each sample's own face of the input. On the
+// camel at 6K (thin legs, ears and tail), every eighth vertex is pushed along its normal by
+// 0.6, 1.2 or 2 budgets, each push judged by three guards, then undone: one that has seen all
+// the pushes before (its witnesses), a new one (its seeds), and a new one without witnesses
+// (its search alone):
+//   * the witnesses and the seeds never refuse what the search passes (they only skip
+//     samples);
+//   * both are used, and both pass pushes the search refuses: the search looks only at the
+//     faces around the edit, so a sample on a sharp edge of a thin part, whose own face lies
+//     outside them, was closest to an edited face across the part (with a face normal of the
+//     sharp edge on that side) although its own face lies within its bound;
+//   * every push a guard passes leaves every input sample on a sharp edge near it within the
+//     budget of the whole pushed mesh (an independent measure: a projector of that mesh).
 TEST(ReductionParts, SampleWitnessesPassOnlyWhatTheWholeMeshPasses) {
   TMesh m;
   std::unique_ptr<SurfaceProjector> raw;
@@ -949,7 +952,8 @@ TEST(ReductionParts, SampleWitnessesPassOnlyWhatTheWholeMeshPasses) {
   const double full = opt.hausdorffBudgetPercent / 100.0 * diag;  // the budget before the tenth kept back
   const std::vector<vcg::Point3f> sharp = CreaseSamples(m, opt.sharpEdgeDeg);
   const double pushes[] = {0.6, 1.2, 2.0};
-  int judged = 0, passed = 0, savedRefusals = 0, freshStricter = 0;
+  int judged = 0, passed = 0, seededPassed = 0, savedRefusals = 0, seededSaved = 0, stricter = 0;
+  size_t seedHits = 0;
   double worstPassed = 0;
   for (size_t i = 0; i < m.vert.size(); i += 8) {
     const int v = int(i);
@@ -962,15 +966,24 @@ TEST(ReductionParts, SampleWitnessesPassOnlyWhatTheWholeMeshPasses) {
     auto cp = ed.Mark();
     ed.journal().SaveVertex(ed.V(v));
     m.vert[i].P() += TMesh::CoordType::Construct(n * push);
-    double crease = 0, freshCrease = 0;
-    const bool pass = seasoned.DeviationAround({v}, &crease) <= budget && crease <= creaseBudget;
-    EditGuard<TMesh> fresh(m, input, opt, ed, state);
-    const bool freshPass = fresh.DeviationAround({v}, &freshCrease) <= budget && freshCrease <= creaseBudget;
+    auto judge = [&](EditGuard<TMesh>& g) {
+      double crease = 0;
+      return g.DeviationAround({v}, &crease) <= budget && crease <= creaseBudget;
+    };
+    const bool pass = judge(seasoned);
+    EditGuard<TMesh> seeded(m, input, opt, ed, state);
+    const bool seededPass = judge(seeded);
+    seedHits += seeded.WitnessHits();
+    EditGuard<TMesh> search(m, input, opt, ed, state);
+    search.ForgetWitnesses();
+    const bool searchPass = judge(search);
     ++judged;
     passed += pass;
-    freshStricter += freshPass && !pass;
-    if (pass && !freshPass) ++savedRefusals;
-    if (pass) {
+    seededPassed += seededPass;
+    stricter += (searchPass && !pass) + (searchPass && !seededPass);
+    savedRefusals += pass && !searchPass;
+    seededSaved += seededPass && !searchPass;
+    if (pass || seededPass) {
       const vcg::Point3f at = vcg::Point3f::Construct(m.vert[i].P());
       std::vector<vcg::Point3f> near;
       for (const auto& p : sharp)
@@ -979,14 +992,19 @@ TEST(ReductionParts, SampleWitnessesPassOnlyWhatTheWholeMeshPasses) {
     }
     ed.RollbackTo(cp);
   }
-  std::printf("camel at 6K: %d pushes judged, %d passed, %d of them refused by a fresh guard; %zu witness hits; "
-              "worst sharp sample of a passed push %.3g (budget %.3g)\n",
-              judged, passed, savedRefusals, seasoned.WitnessHits(), worstPassed, full);
+  std::printf("camel at 6K: %d pushes judged; the seasoned guard passed %d (%d refused by the search alone, %zu "
+              "witness hits), a new guard %d (%d refused by the search alone, %zu seed hits); worst sharp sample of a "
+              "passed push %.3g (budget %.3g)\n",
+              judged, passed, savedRefusals, seasoned.WitnessHits(), seededPassed, seededSaved, seedHits, worstPassed,
+              full);
   EXPECT_GT(judged, 600);
-  EXPECT_EQ(freshStricter, 0);
+  EXPECT_EQ(stricter, 0);
   EXPECT_GT(seasoned.WitnessHits(), 0u);
+  EXPECT_GT(seedHits, 0u);
   EXPECT_GT(savedRefusals, 0);
+  EXPECT_GT(seededSaved, 0);
   EXPECT_LT(passed, judged);  // the 2-budget pushes near sharp edges are refused
+  EXPECT_LT(seededPassed, judged);
   EXPECT_LE(worstPassed, full);
 }
 

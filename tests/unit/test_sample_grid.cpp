@@ -71,8 +71,11 @@ TEST(SampleGrid, SamplesAtOnePointWithOneTagAreOnePointWithTheirDistinctNormals)
   const std::vector<vcg::Point3f> nrm{up, up, down, side, up, down};
   const std::vector<char> tags{0, 0, 0, 0, 0, 1};
   SampleGrid grid;
-  grid.Build(pts, nrm, 0.25, tags);
+  std::vector<int> merged;
+  grid.Build(pts, nrm, 0.25, tags, &merged);
   ASSERT_EQ(grid.Size(), 3u);
+  // which merged point each sample became (the guard seeds its witnesses through it)
+  EXPECT_EQ(merged, (std::vector<int>{0, 1, 0, 1, 0, 2}));
   // merged in the order first seen
   EXPECT_EQ(grid.Point(0), a);
   EXPECT_EQ(grid.Point(1), b);

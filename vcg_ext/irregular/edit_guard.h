@@ -69,6 +69,9 @@ class EditGuard {
   /// Input samples that a witness showed harmless (Deviation), over the guard's life: for the
   /// tests, which check that the shortcut is taken.
   size_t WitnessHits() const { return witnessHits_; }
+  /// Drops every witness, seeds included: the next checks search, as a guard without
+  /// witnesses would (the tests compare the two verdicts).
+  void ForgetWitnesses() { std::fill(sampleWitness_.begin(), sampleWitness_.end(), -1); }
   Editor& ed() { return ed_; }
   ReductionState<MeshType>& state() { return state_; }
 
@@ -513,24 +516,47 @@ class EditGuard {
     const double h = MeanEdgeLength(m_);
     std::vector<vcg::Point3f> samples, normals;
     std::vector<char> onCrease;  // per sample: on a crease line (opt.creaseDeg)
+    std::vector<int> source;     // per sample: the input's face it lies on
     SharpEdgeSamples(original_.Mesh(), opt_.sharpEdgeDeg, opt_.creaseDeg, opt_.creaseMinEdges, samples, normals,
-                     onCrease);
-    if (perEdge > 0) ThinnedSurfaceSamples(original_.Mesh(), h / perEdge, samples, normals);
+                     onCrease, &source);
+    if (perEdge > 0) ThinnedSurfaceSamples(original_.Mesh(), h / perEdge, samples, normals, &source);
     onCrease.resize(samples.size(), 0);
     // a sample is a point and a face's normal: the points repeat (a vertex once per sharp edge
     // and face around it), and the grid merges them (sample_grid.h); the tag keeps crease
     // samples apart (their bound is the crease budget)
-    originalSamples_.Build(samples, normals, h, onCrease);
+    std::vector<int> merged;
+    originalSamples_.Build(samples, normals, h, onCrease, &merged);
+    SeedWitnesses(source, merged);
+  }
+
+  /// Every sample's first witness: the face of the mesh it was taken from, when the mesh is
+  /// still the input (the projector's faces are the mesh's live faces, in order). A sample
+  /// lies on that face, so the first edit near it needs no search either, and the search's
+  /// false refusals on thin parts (see Deviation) are avoided from the first edit on. A seed
+  /// is only a candidate: Witnessed measures it as it measures any witness, so a mesh that
+  /// is not the input (remeshed first, or edited before a retry's resampling) only loses the
+  /// shortcut. O(faces + samples), once per sampling.
+  void SeedWitnesses(const std::vector<int>& source, const std::vector<int>& merged) {
     sampleWitness_.assign(originalSamples_.Size(), -1);
+    std::vector<int> live;  // the input's face k is the mesh's face live[k]
+    live.reserve(original_.Mesh().face.size());
+    for (size_t i = 0; i < m_.face.size(); ++i)
+      if (!m_.face[i].IsD()) live.push_back(int(i));
+    if (live.size() != original_.Mesh().face.size()) return;
+    for (size_t k = 0; k < source.size() && k < merged.size(); ++k) {
+      int& w = sampleWitness_[size_t(merged[k])];
+      if (w < 0) w = live[size_t(source[k])];
+    }
   }
 
   /// Ends and midpoints of the edges of m whose dihedral angle exceeds angleDeg, with the
   /// normal of each face along the edge; onCrease[i]: sample i lies on a crease line (an
   /// interior edge sharper than creaseDeg, in a connected set of at least creaseMinEdges of
-  /// them, crease_lines.h; none when creaseDeg is 0). O(F log F).
+  /// them, crease_lines.h; none when creaseDeg is 0); source (if given): the face of each.
+  /// O(F log F).
   static void SharpEdgeSamples(const SurfaceProjector::PMesh& m, double angleDeg, double creaseDeg, int creaseMinEdges,
                                std::vector<vcg::Point3f>& pts, std::vector<vcg::Point3f>& nrm,
-                               std::vector<char>& onCrease) {
+                               std::vector<char>& onCrease, std::vector<int>* source = nullptr) {
     // One flat array of half-edges sorted by (edge, face), not a map of vectors: the same
     // samples in the same order (the map's pointer keys ordered the vertices by index), and
     // 12 bytes per half-edge instead of a node and a vector per edge (at 1.2M faces the map
@@ -577,13 +603,15 @@ class EditGuard {
           pts.push_back(p);
           nrm.push_back(m.face[he[k].f].cN());
           onCrease.push_back(crease);
+          if (source) source->push_back(int(he[k].f));
         }
     }
   }
 
-  /// Face centroids and corners of m, at most one per cell of a grid of the given spacing.
+  /// Face centroids and corners of m, at most one per cell of a grid of the given spacing;
+  /// source (if given): the face of each.
   static void ThinnedSurfaceSamples(const SurfaceProjector::PMesh& m, double spacing, std::vector<vcg::Point3f>& pts,
-                                    std::vector<vcg::Point3f>& nrm) {
+                                    std::vector<vcg::Point3f>& nrm, std::vector<int>* source = nullptr) {
     std::unordered_map<uint64_t, char> taken;
     auto cell = [&](const vcg::Point3f& p) {
       auto c = [&](float x) { return uint64_t(int64_t(std::floor(x / spacing)) & 0x1FFFFF); };
@@ -594,6 +622,7 @@ class EditGuard {
         if (taken.emplace(cell(p), 1).second) {
           pts.push_back(p);
           nrm.push_back(f.cN());
+          if (source) source->push_back(int(&f - &m.face[0]));
         }
   }
 

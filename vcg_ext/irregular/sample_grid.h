@@ -33,8 +33,9 @@ class SampleGrid {
   /// points[i] with normals[i] and tags[i] (empty tags: all 0); cell: edge of a grid cell
   /// (about the size of the boxes queried). Equal points with equal tags are merged, in the
   /// order each point is first seen; each keeps its distinct normals in the order seen.
+  /// merged (if given): per input point, the index of the merged point it became.
   void Build(const std::vector<vcg::Point3f>& points, const std::vector<vcg::Point3f>& normals, double cell,
-             const std::vector<char>& tags = {}) {
+             const std::vector<char>& tags = {}, std::vector<int>* merged = nullptr) {
     points_.clear();
     tags_.clear();
     normals_.clear();
@@ -76,6 +77,7 @@ class SampleGrid {
             normals_.push_back(grouped[size_t(j)]);
         normalStart_.push_back(int(normals_.size()));
       }
+      if (merged) merged->swap(of);
     }
     cell_ = cell > 0 ? float(cell) : 1.f;
     cells_.clear();
