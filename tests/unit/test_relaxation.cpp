@@ -591,3 +591,55 @@ TEST(Relaxation, AnyWithinAgreesWithKRingAndStopsAtTheFirstHit) {
   EXPECT_GT(hits, 20);
   EXPECT_GT(misses, 20);
 }
+
+// MaxCornerCos computes only the corner facing the shortest edge (the smallest angle's) unless
+// the two shortest edges are within a millionth of each other: the value must be the largest
+// of the three corners' cosines, each computed as before, to the bit. Random triangles, and
+// isosceles, equilateral and nearly isosceles ones (where the rounding could order the two
+// cosines either way), in all three vertex orders.
+TEST(Relaxation, MaxCornerCosIsTheLargestOfTheThreeCornersToTheBit) {
+  TMesh m;
+  vcg::tri::Allocator<TMesh>::AddVertices(m, 3);
+  vcg::tri::Allocator<TMesh>::AddFaces(m, 1);
+  TMesh::FaceType& f = m.face[0];
+  for (int z = 0; z < 3; ++z) f.V(z) = &m.vert[size_t(z)];
+  auto byCorners = [&]() {
+    double best = -2;
+    for (int z = 0; z < 3; ++z) {
+      const auto a = f.cP((z + 1) % 3) - f.cP(z), b = f.cP((z + 2) % 3) - f.cP(z);
+      const double la = a.Norm(), lb = b.Norm();
+      if (la <= 0 || lb <= 0) return 1.0;
+      best = std::max(best, double(a.dot(b)) / (la * lb));
+    }
+    return best;
+  };
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int checked = 0, nearTies = 0;
+  for (int k = 0; k < 20000; ++k) {
+    TMesh::CoordType p[3];
+    if (k % 4 == 0) {
+      for (auto& q : p) q = TMesh::CoordType(u(rng), u(rng), u(rng));
+    } else {
+      // apex above the middle of a base: isosceles (k % 4 == 1), off by a relative 1e-9
+      // (2) or 1e-5 (3); equilateral among them when the height is sqrt(3) / 2
+      const double h = k % 16 == 1 ? std::sqrt(3.0) / 2 : 0.05 + std::abs(u(rng)) * 3;
+      const double off = k % 4 == 1 ? 0 : k % 4 == 2 ? 1e-9 : 1e-5;
+      p[0] = TMesh::CoordType(0, 0, 0);
+      p[1] = TMesh::CoordType(1, 0, 0);
+      p[2] = TMesh::CoordType(0.5 + off, h, 0);
+      nearTies += k % 4 != 3;
+    }
+    for (int r = 0; r < 3; ++r) {
+      for (int z = 0; z < 3; ++z) m.vert[size_t(z)].P() = p[(z + r) % 3];
+      const double expected = byCorners(), got = relax_detail::MaxCornerCos(&f);
+      ASSERT_EQ(got, expected) << "triangle " << k << " rotation " << r;
+      ++checked;
+    }
+  }
+  // a zero-length edge is a zero angle
+  m.vert[1].P() = m.vert[0].P();
+  EXPECT_EQ(relax_detail::MaxCornerCos(&f), 1.0);
+  EXPECT_EQ(checked, 60000);
+  EXPECT_GT(nearTies, 9000);
+}

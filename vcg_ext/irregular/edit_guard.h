@@ -260,7 +260,8 @@ class EditGuard {
   /// only, over the crease samples only (CutsCrease).
   double Deviation(const std::vector<int>& region, const std::vector<const FaceType*>& changed, double* crease,
                    bool creaseOnly) {
-    std::vector<const FaceType*> all;
+    std::vector<const FaceType*>& all = scratch_.all;  // buffers reused from edit to edit
+    all.clear();
     auto seenInsert = [&](const FaceType* f) { return faceSeen_.Insert(size_t(f - &m_.face[0])); };
     // (a) each changed face's centroid and edge midpoints (an edge shared by two changed faces
     // once) against the input; a query looks no farther than just past the budget
@@ -312,10 +313,11 @@ class EditGuard {
     // edit, so catching them below twice the budget suffices.
     // One grid query over the union of the faces' widened boxes, then each sample found kept
     // if it lies in one of them: the same samples as a query per face, at one query per edit.
-    std::vector<int> near;
+    std::vector<int>& near = scratch_.near;
+    near.clear();
     {
-      std::vector<vcg::Box3<float>> faceBoxes;
-      faceBoxes.reserve(changed.size());
+      std::vector<vcg::Box3<float>>& faceBoxes = scratch_.faceBoxes;
+      faceBoxes.clear();
       vcg::Box3<float> all;
       for (const FaceType* f : changed) {
         vcg::Box3<float> b;
@@ -324,7 +326,8 @@ class EditGuard {
         faceBoxes.push_back(b);
         all.Add(b);
       }
-      for (int i : originalSamples_.InBox(all)) {
+      originalSamples_.InBox(all, scratch_.inBox);
+      for (int i : scratch_.inBox) {
         if (creaseOnly && originalSamples_.Tag(i) == 0) continue;
         for (const vcg::Box3<float>& b : faceBoxes)
           if (b.IsIn(originalSamples_.Point(i))) {
@@ -371,10 +374,10 @@ class EditGuard {
     // a heap allocation per cell (the buffer is reused from edit to edit)
     std::vector<std::pair<uint64_t, int>>& faceCells = faceCells_;
     faceCells.clear();
-    std::vector<vcg::Triangle3<float>> tri;
-    std::vector<vcg::Box3<float>> boxes;
-    tri.reserve(all.size());
-    boxes.reserve(all.size());
+    std::vector<vcg::Triangle3<float>>& tri = scratch_.tri;
+    std::vector<vcg::Box3<float>>& boxes = scratch_.boxes;
+    tri.clear();
+    boxes.clear();
     for (size_t k = 0; k < all.size(); ++k) {
       const FaceType* f = all[k];
       tri.emplace_back(vcg::Point3f::Construct(f->cP(0)), vcg::Point3f::Construct(f->cP(1)),
@@ -391,7 +394,8 @@ class EditGuard {
     // its box is already farther than the closest face so far (the distance to a triangle is
     // at least the distance to its box; the margin covers rounding), which cannot change the
     // closest face found.
-    std::vector<int> lastSample(all.size(), -1);
+    std::vector<int>& lastSample = scratch_.lastSample;
+    lastSample.assign(all.size(), -1);
     auto boxDistance = [&](const vcg::Box3<float>& b, const vcg::Point3f& p) {
       float d2 = 0;
       for (int a = 0; a < 3; ++a) {
@@ -651,6 +655,15 @@ class EditGuard {
   std::vector<const FaceType*> changed_;  ///< ... and its faces
   std::vector<std::pair<uint64_t, int>> faceCells_;  ///< DeviationAround's faces by grid cell
   std::vector<vcg::Point3f> changedNormals_;          ///< ... and its changed faces' normals
+  /// Deviation's other buffers, kept so an edit's check allocates nothing once they have grown.
+  struct DeviationScratch {
+    std::vector<const FaceType*> all;        ///< the changed faces and one more ring
+    std::vector<int> near, inBox;            ///< input samples near the changed faces; a grid query's
+    std::vector<vcg::Box3<float>> faceBoxes; ///< the changed faces' widened boxes
+    std::vector<vcg::Triangle3<float>> tri;  ///< all's triangles ...
+    std::vector<vcg::Box3<float>> boxes;     ///< ... and their boxes
+    std::vector<int> lastSample;             ///< per face of all: the last sample measured against it
+  } scratch_;
   std::vector<int> sampleWitness_;  ///< per input sample: the face (index) that last showed it harmless, or -1
   size_t witnessHits_ = 0;          ///< samples a witness showed harmless (WitnessHits)
 };

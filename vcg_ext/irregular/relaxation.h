@@ -282,14 +282,29 @@ namespace relax_detail {
 /// Largest cosine of f's three corner angles (1 with a zero-length edge: a zero angle). Each
 /// edge and length once: p_j - p_i is exactly -(p_i - p_j), and a negated vector has the same
 /// norm and negates a dot product exactly, so this is the value corner by corner would give.
+/// The largest cosine is the smallest angle's, which faces the shortest edge: only that
+/// corner is computed (two square roots and one division instead of three each; the
+/// relaxation's move check asks this for every face of every star it moves). When the two
+/// shortest edges are within a millionth of each other the rounding of the two cosines could
+/// order them either way, so all three are computed and the largest kept. The value is the
+/// largest of the three as before, to the bit, but on a needle with two angles near zero
+/// (both cosines within an ulp of 1, either may round higher).
 template <class FaceType>
 double MaxCornerCos(const FaceType* f) {
   const auto e01 = f->cP(1) - f->cP(0), e12 = f->cP(2) - f->cP(1), e20 = f->cP(0) - f->cP(2);
-  const double l01 = e01.Norm(), l12 = e12.Norm(), l20 = e20.Norm();
-  if (l01 <= 0 || l12 <= 0 || l20 <= 0) return 1;
-  // the corner at P(z) between the edges to P(z+1) and P(z+2)
-  return std::max({double(-e01.dot(e20)) / (l01 * l20), double(-e12.dot(e01)) / (l12 * l01),
-                   double(-e20.dot(e12)) / (l20 * l12)});
+  // squared lengths in the mesh's scalar type: a length is its square root there, the value
+  // Norm() gives (float meshes take a float square root)
+  const auto s01 = e01.SquaredNorm(), s12 = e12.SquaredNorm(), s20 = e20.SquaredNorm();
+  if (s01 <= 0 || s12 <= 0 || s20 <= 0) return 1;
+  auto len = [](decltype(s01) sq) { return double(std::sqrt(sq)); };
+  // the corner at P(z) between the edges to P(z+1) and P(z+2), facing edge (z+1, z+2)
+  auto at0 = [&] { return double(-e01.dot(e20)) / (len(s01) * len(s20)); };  // faces e12
+  auto at1 = [&] { return double(-e12.dot(e01)) / (len(s12) * len(s01)); };  // faces e20
+  auto at2 = [&] { return double(-e20.dot(e12)) / (len(s20) * len(s12)); };  // faces e01
+  const double lo = double(std::min({s01, s12, s20}));
+  const double mid = double(std::max(std::min(s01, s12), std::min(std::max(s01, s12), s20)));
+  if (mid - lo <= 1e-6 * mid) return std::max({at0(), at1(), at2()});
+  return lo == s12 ? at0() : lo == s20 ? at1() : at2();
 }
 
 /// A move is kept if it folds nothing (no face of v turns by more than acos(minCos)) and does

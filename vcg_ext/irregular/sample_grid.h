@@ -108,7 +108,13 @@ class SampleGrid {
   /// Indices of the points inside box (closed), each once, in no particular order.
   std::vector<int> InBox(const vcg::Box3<float>& box) const {
     std::vector<int> out;
-    if (box.IsNull() || points_.empty()) return out;
+    InBox(box, out);
+    return out;
+  }
+  /// The same into out (cleared first), whose room is reused.
+  void InBox(const vcg::Box3<float>& box, std::vector<int>& out) const {
+    out.clear();
+    if (box.IsNull() || points_.empty()) return;
     const int64_t lo[3] = {Cell(box.min[0]), Cell(box.min[1]), Cell(box.min[2])};
     const int64_t hi[3] = {Cell(box.max[0]), Cell(box.max[1]), Cell(box.max[2])};
     // the occupied blocks first; then the box's cells within each
@@ -129,7 +135,6 @@ class SampleGrid {
                   if (box.IsIn(points_[size_t(i)])) out.push_back(i);
               }
         }
-    return out;
   }
 
  private:
