@@ -448,6 +448,76 @@ TEST(ReductionParts, GuardUndoesAnEditOffTheSurfaceAndRecordsItsVertex) {
   EXPECT_EQ(p.state.Irregular(), Recount(m));
 }
 
+// Within a SameTopology the guard gathers an edit's 2-ring once and answers every question
+// about the same seeds from it: the answers, the relaxed positions and the journal (what an
+// undo restores) must be those of a guard that gathers each time. Two copies of bunny00 at
+// 3K, the same flips on both, the same questions in the transport's order (CutsCrease,
+// RelaxAround, FoldsAround, the verdict, RelaxAround and the verdict again), asked with and
+// without the scope; then both undone. Once with nothing protected and once with every
+// seventh vertex protected (RelaxAround then moves part of the ring).
+TEST(ReductionParts, SameTopologyGivesTheAnswersOfAGuardThatGathersEachTime) {
+  TMesh remeshed;
+  std::unique_ptr<SurfaceProjector> input;
+  ASSERT_TRUE(RemeshedCorpus(remeshed, "bunny00.off", 3000, &input)) << "corpus mesh missing (run scripts/setup.sh)";
+  for (int frozen = 0; frozen < 2; ++frozen) {
+    TMesh a, b;
+    for (TMesh* c : {&a, &b}) {
+      vcg::tri::Append<TMesh, TMesh>::MeshCopy(*c, remeshed, false, true);
+      vcg::tri::UpdateTopology<TMesh>::FaceFace(*c);
+      vcg::tri::UpdateTopology<TMesh>::VertexFace(*c);
+    }
+    ASSERT_TRUE(test::Snapshot(a) == test::Snapshot(b));
+    ReductionOptions opt;
+    if (frozen)
+      for (size_t i = 0; i < a.vert.size(); ++i) opt.frozen.push_back(i % 7 == 0);
+    Parts pa(a, *input, opt), pb(b, *input, opt);
+    int flips = 0, kept = 0, memoHits = 0;
+    for (size_t i = 0; i < a.vert.size() && flips < 60; i += 11) {
+      const int v = int(i);
+      if (!pa.ed.IsLive(v) || pa.ed.IsBoundary(v)) continue;
+      const int w = int(vcg::tri::Index(a, pa.ed.Star(v).neighbors[0]));
+      auto ca = pa.ed.Mark();
+      auto cb = pb.ed.Mark();
+      if (!pa.ed.Flip(v, w).ok) continue;  // refused (the mesh is as it was)
+      ASSERT_TRUE(pb.ed.Flip(v, w).ok);
+      ++flips;
+      const std::vector<int> touched{v, w};
+      auto ask = [&](Parts& p, ReductionReport& rep, std::vector<double>& answers) {
+        GuardedEdit<TMesh> g(p.guard, rep, touched);
+        answers.push_back(p.guard.CutsCrease(touched));
+        p.guard.RelaxAround(touched);
+        answers.push_back(p.guard.FoldsAround(touched));
+        answers.push_back(int(g.Verdict(touched)));
+        p.guard.RelaxAround(touched);
+        answers.push_back(int(g.Verdict(touched)));
+        double atCrease = 180;
+        answers.push_back(p.guard.MinAngleOfJudged(&atCrease));
+      };
+      ReductionReport ra, rb;
+      std::vector<double> plain, memo;  // the answers, in the order asked
+      ask(pa, ra, plain);
+      {
+        const EditGuard<TMesh>::SameTopology same(pb.guard);
+        ask(pb, rb, memo);
+        memoHits += pb.guard.Gathered(touched);
+      }
+      EXPECT_FALSE(pb.guard.Gathered(touched));  // the scope's end forgets the gathering
+      EXPECT_EQ(plain, memo) << "flip " << v << "-" << w;
+      ASSERT_TRUE(test::Snapshot(a) == test::Snapshot(b)) << "flip " << v << "-" << w;
+      kept += plain[3] == double(GuardVerdict::Kept);
+      pa.ed.RollbackTo(ca);
+      pb.ed.RollbackTo(cb);
+      ASSERT_TRUE(test::Snapshot(a) == test::Snapshot(b)) << "undo of flip " << v << "-" << w;
+    }
+    std::printf("bunny00 at 3K (%s): %d flips asked, %d kept\n", frozen ? "every 7th vertex protected" : "nothing protected",
+                flips, kept);
+    EXPECT_EQ(flips, 60);
+    EXPECT_EQ(memoHits, 60);
+    EXPECT_GT(kept, 0);
+    EXPECT_LT(kept, flips);
+  }
+}
+
 // Meshes with holes (issue 14, item 3): the boundary stage moves interior irregular vertices
 // into the boundary or cancels them there, and the edit guard keeps the boundary irregular
 // count (corner rule) at most the input's, with or without the stage.

@@ -107,18 +107,25 @@ class EditGuard {
   /// straight slide along it (LocalRelax, RelaxOptions::boundaryCurve), for edits on the
   /// boundary.
   void RelaxAround(const std::vector<int>& seeds, const BoundaryCurve* slideAlong = nullptr) {
-    const std::vector<int> live = LiveOf(seeds);
-    if (live.empty()) return;
-    std::vector<int> ring = KRing(m_, live, 2), movable;
+    const bool gathered = Gathered(seeds);
+    const std::vector<int> live = gathered ? std::vector<int>() : LiveOf(seeds);
+    if (gathered ? region_.empty() : live.empty()) return;
+    std::vector<int> ring = gathered ? region_ : KRing(m_, live, 2), movable;
     for (int v : ring)
       if (!state_.Frozen(v)) movable.push_back(v);
     // each face once (0.9.19; a face has three vertices in the ring): nothing changes between
-    // the saves, so one record restores it as three would
-    relaxFaceSeen_.Begin(m_.face.size());
-    for (int v : movable) {
-      ed_.journal().SaveVertex(ed_.V(v));
-      for (auto& c : ed_.Star(v).corners)
-        if (relaxFaceSeen_.Insert(size_t(c.f - &m_.face[0]))) ed_.journal().SaveFace(c.f);
+    // the saves, so one record restores it as three would. The gathered faces are those, in
+    // the same order, when every vertex of the ring moves.
+    if (gathered && movable.size() == ring.size()) {
+      for (int v : movable) ed_.journal().SaveVertex(ed_.V(v));
+      for (const FaceType* f : changed_) ed_.journal().SaveFace(const_cast<FaceType*>(f));
+    } else {
+      relaxFaceSeen_.Begin(m_.face.size());
+      for (int v : movable) {
+        ed_.journal().SaveVertex(ed_.V(v));
+        for (auto& c : ed_.Star(v).corners)
+          if (relaxFaceSeen_.Insert(size_t(c.f - &m_.face[0]))) ed_.journal().SaveFace(c.f);
+      }
     }
     RelaxOptions ro;
     ro.iterations = opt_.localRelaxIterations;
@@ -129,22 +136,46 @@ class EditGuard {
   /// Does an edge around the 2-ring of the seeds join faces whose normals differ by more than
   /// maxTurnDeg (a triangle turned over)? For edits made without the per-step fold check.
   bool FoldsAround(const std::vector<int>& seeds, double maxTurnDeg = 120) {
-    const std::vector<int> live = LiveOf(seeds);
     const double c = std::cos(maxTurnDeg * M_PI / 180.0);
-    for (int v : KRing(m_, live, 2))
-      for (auto& cr : ed_.Star(v).corners) {
-        const FaceType* f = cr.f;
-        const CoordType n0 = vcg::TriangleNormal(*f);
-        for (int z = 0; z < 3; ++z) {
-          const FaceType* g = f->cFFp(z);
-          if (g == f) continue;
-          const CoordType n1 = vcg::TriangleNormal(*g);
-          const double d = double(n0.Norm()) * double(n1.Norm());
-          if (d == 0 || double(n0.dot(n1)) / d < c) return true;
-        }
+    auto folds = [&](const FaceType* f) {
+      const CoordType n0 = vcg::TriangleNormal(*f);
+      for (int z = 0; z < 3; ++z) {
+        const FaceType* g = f->cFFp(z);
+        if (g == f) continue;
+        const CoordType n1 = vcg::TriangleNormal(*g);
+        const double d = double(n0.Norm()) * double(n1.Norm());
+        if (d == 0 || double(n0.dot(n1)) / d < c) return true;
       }
+      return false;
+    };
+    if (Gathered(seeds)) {  // the same faces, each once
+      for (const FaceType* f : changed_)
+        if (folds(f)) return true;
+      return false;
+    }
+    for (int v : KRing(m_, LiveOf(seeds), 2))
+      for (auto& cr : ed_.Star(v).corners)
+        if (folds(cr.f)) return true;
     return false;
   }
+
+  /// While one of these lives, the caller promises not to change the mesh's topology (only
+  /// positions: relaxation, angle repair): the 2-ring of a set of seeds and its faces
+  /// (GatherChanged) are then gathered once and reused by every question about the same seeds
+  /// (CutsCrease, RelaxAround, FoldsAround, Judge, ...). A transport's route asked them four
+  /// to six times in a row, each a walk of the ring and of every star in it.
+  class SameTopology {
+   public:
+    explicit SameTopology(EditGuard& g) : g_(g) { g_.memo_ = Memo{true, false, {}}; }
+    ~SameTopology() { g_.memo_ = Memo(); }
+    SameTopology(const SameTopology&) = delete;
+    SameTopology& operator=(const SameTopology&) = delete;
+
+   private:
+    EditGuard& g_;
+  };
+  /// Is the gathering of these seeds at hand (within a SameTopology, gathered since)?
+  bool Gathered(const std::vector<int>& seeds) const { return memo_.active && memo_.valid && memo_.seeds == seeds; }
 
   /// Smallest angle (degrees) of the faces around the 2-ring of the seeds. With atCrease, the
   /// faces with a vertex on a crease line count there instead (*atCrease: their smallest angle,
@@ -235,14 +266,26 @@ class EditGuard {
   /// The part of the mesh an edit around the seeds changes: the local relaxation after an edit
   /// moves its 2-ring (region: the 2-ring of the live seeds), which changes the faces around it
   /// (changed: each once, in the order the stars give them; faceSeen_ holds them).
+  /// region and changed are always region_ and changed_ (the memo of SameTopology holds them).
   void GatherChanged(const std::vector<int>& seeds, std::vector<int>& region, std::vector<const FaceType*>& changed) {
+    if (Gathered(seeds)) {
+      // Deviation adds faces to faceSeen_: it is refilled with the gathered faces alone
+      faceSeen_.Begin(m_.face.size());
+      for (const FaceType* f : changed) faceSeen_.Insert(size_t(f - &m_.face[0]));
+      return;
+    }
     region = KRing(m_, LiveOf(seeds), 2);
     changed.clear();
     faceSeen_.Begin(m_.face.size());
     for (int v : region)
       for (auto& c : ed_.Star(v).corners)
         if (faceSeen_.Insert(size_t(c.f - &m_.face[0]))) changed.push_back(c.f);
+    if (memo_.active) {
+      memo_.valid = true;
+      memo_.seeds = seeds;
+    }
   }
+
 
   /// Smallest angle (degrees) of the faces; with atCrease, those with a vertex on a crease
   /// line count there instead (see MinAngleAround).
@@ -653,6 +696,12 @@ class EditGuard {
   StampSet relaxFaceSeen_;      ///< RelaxAround: the faces it journaled
   std::vector<int> region_;     ///< GatherChanged's region, reused from call to call
   std::vector<const FaceType*> changed_;  ///< ... and its faces
+  /// SameTopology's memo: region_ and changed_ are the gathering of `seeds` (valid), reusable
+  /// while the topology does not change (active).
+  struct Memo {
+    bool active = false, valid = false;
+    std::vector<int> seeds;
+  } memo_;
   std::vector<std::pair<uint64_t, int>> faceCells_;  ///< DeviationAround's faces by grid cell
   std::vector<vcg::Point3f> changedNormals_;          ///< ... and its changed faces' normals
   /// Deviation's other buffers, kept so an edit's check allocates nothing once they have grown.
@@ -718,16 +767,6 @@ class GuardedEdit {
                        : v == GuardVerdict::Angle    ? Refusal::Angle
                        : v == GuardVerdict::Boundary ? Refusal::Boundary
                                                      : Refusal::Hausdorff);
-  }
-  /// Refuses the edit, before any relaxation, if it cuts a crease line (EditGuard::CutsCrease):
-  /// undone, recorded as a Hausdorff refusal and counted in rep.undone. Such an edit nearly
-  /// always fails the guard after relaxation too (fandisk at 20K: 3910 of 3916 routes), and
-  /// refusing it first saves its relaxation and judging (a third of fandisk's reduction).
-  bool RefuseIfCutsCrease(const std::vector<int>& touched) {
-    if (!g_.CutsCrease(touched)) return false;
-    Refuse(GuardVerdict::Hausdorff);
-    ++rep_.undone;
-    return true;
   }
   /// The edit is kept: stamps, running count, and (outermost edit) the journal's commit.
   void Keep(const std::vector<int>& touched) { g_.state().Kept(touched); }

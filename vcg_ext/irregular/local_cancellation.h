@@ -55,12 +55,26 @@ class LocalCancellation {
         "cancellation", false);
     if (!o) return false;
     std::vector<int> touched = state_.Changed(o);
-    if (g.RefuseIfCutsCrease(touched)) return false;
-    guard_.RelaxAround(touched);
-    if (!g.Accept(touched)) {
+    bool cuts = false;
+    GuardVerdict verdict = GuardVerdict::Kept;
+    {
+      // only positions change until the verdict: the 2-ring is gathered once
+      const typename EditGuard<MeshType>::SameTopology sameTopology(guard_);
+      // an edit that cuts a crease line is refused before any relaxation: it nearly always
+      // fails the guard after relaxation too (fandisk at 20K: 3910 of 3916 routes), and
+      // refusing it first saves its relaxation and judging (a third of fandisk's reduction)
+      cuts = guard_.CutsCrease(touched);
+      if (!cuts) {
+        guard_.RelaxAround(touched);
+        verdict = g.Verdict(touched);
+      }
+    }
+    if (cuts || verdict != GuardVerdict::Kept) {
+      g.Refuse(cuts ? GuardVerdict::Hausdorff : verdict);  // a crease cut counts as the distance's
       ++rep.undone;
       return false;
     }
+    g.Keep(touched);
     ++rep.localCancellations;
     return true;
   }

@@ -120,13 +120,18 @@ class PairTransport {
         AtomicOutcome gen = ops_.MoveWithPairGeneration(cur, k);
         if (!gen) continue;
         const std::vector<int> changed = state_.Record(gen, touched);
-        if (guard_.CutsCrease(changed)) {
+        bool cuts = false;
+        {
+          const typename EditGuard<MeshType>::SameTopology sameTopology(guard_);  // one gathering for both
+          cuts = guard_.CutsCrease(changed);
+          if (!cuts) guard_.RelaxAround(changed);
+        }
+        if (cuts) {
           touched.resize(mark);
           ed_.RollbackTo(cp);
           continue;
         }
         unjudged.insert(unjudged.end(), changed.begin(), changed.end());
-        guard_.RelaxAround(changed);
         const int moved = gen.irregular[0];
         int p5 = gen.irregular[1], p7 = gen.irregular[2];
         if (ed_.Valence(p5) != 5) std::swap(p5, p7);
@@ -301,19 +306,32 @@ class PairTransport {
       if (opt_.refusedRouteMemo) refused_.push_back({std::move(probe), how});
       return false;
     };
-    if (guard_.CutsCrease(touched)) return refuse(kCutsCrease);
-    // The probe's route, relaxed as a whole: usually as good as the same route relaxed step
-    // by step, at a fraction of the cost (the steps' 2-rings overlap).
-    guard_.RelaxAround(touched);
-    if (guard_.FoldsAround(touched)) return refuse(kFolds);
-    GuardVerdict verdict = g.Verdict(touched);
-    if (verdict != GuardVerdict::Kept) {
-      guard_.RelaxAround(touched);
-      verdict = g.Verdict(touched);
-    }
+    GuardVerdict verdict = GuardVerdict::Kept;
     bool repaired = false;
-    if (verdict == GuardVerdict::Angle) repaired = (verdict = RepairAngles(g, touched)) == GuardVerdict::Kept;
-    if (verdict != GuardVerdict::Kept) return refuse(int(verdict));
+    int refusal = 0;  // kCutsCrease, kFolds, a GuardVerdict, or 0 (kept)
+    {
+      // from here to the verdict only positions change: the route's 2-ring is gathered once
+      const typename EditGuard<MeshType>::SameTopology sameTopology(guard_);
+      if (guard_.CutsCrease(touched)) {
+        refusal = kCutsCrease;
+      } else {
+        // The probe's route, relaxed as a whole: usually as good as the same route relaxed
+        // step by step, at a fraction of the cost (the steps' 2-rings overlap).
+        guard_.RelaxAround(touched);
+        if (guard_.FoldsAround(touched)) {
+          refusal = kFolds;
+        } else {
+          verdict = g.Verdict(touched);
+          if (verdict != GuardVerdict::Kept) {
+            guard_.RelaxAround(touched);
+            verdict = g.Verdict(touched);
+          }
+          if (verdict == GuardVerdict::Angle) repaired = (verdict = RepairAngles(g, touched)) == GuardVerdict::Kept;
+          if (verdict != GuardVerdict::Kept) refusal = int(verdict);
+        }
+      }
+    }
+    if (refusal != 0) return refuse(refusal);
     rep.angleRepairs += repaired;
     g.Keep(touched);
     if (touchedOut) touchedOut->insert(touchedOut->end(), touched.begin(), touched.end());
@@ -353,7 +371,7 @@ class PairTransport {
       g.Undo();
       state_.Refused(Refusal::Fold);
     } else {
-      // a crease cut is refused as a Hausdorff one (GuardedEdit::RefuseIfCutsCrease)
+      // a crease cut is refused as a Hausdorff one (as LocalCancellation::CancelAround does)
       g.Refuse(how == kCutsCrease ? GuardVerdict::Hausdorff : GuardVerdict(how));
     }
   }
