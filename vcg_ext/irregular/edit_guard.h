@@ -286,7 +286,6 @@ class EditGuard {
     }
   }
 
-
   /// Smallest angle (degrees) of the faces; with atCrease, those with a vertex on a crease
   /// line count there instead (see MinAngleAround).
   double MinAngleOf(const std::vector<const FaceType*>& faces, double* atCrease) const {
