@@ -414,7 +414,7 @@ class EditGuard {
     // (cell key, face) pairs sorted by key then face: each cell's faces in increasing face
     // order, as a hash map of per-cell vectors filled face by face would hold them, without
     // a heap allocation per cell (the buffer is reused from edit to edit)
-    std::vector<std::pair<uint64_t, int>>& faceCells = faceCells_;
+    std::vector<std::pair<uint64_t, int>>& faceCells = scratch_.faceCells;
     faceCells.clear();
     std::vector<vcg::Triangle3<float>>& tri = scratch_.tri;
     std::vector<vcg::Box3<float>>& boxes = scratch_.boxes;
@@ -460,7 +460,7 @@ class EditGuard {
     };
     // A sample counts only if its closest face is a changed one on its side (below): one
     // facing away from every changed face (the other sheet of a thin part) cannot count.
-    std::vector<vcg::Point3f>& changedNormals = changedNormals_;
+    std::vector<vcg::Point3f>& changedNormals = scratch_.changedNormals;
     changedNormals.clear();
     for (size_t k = 0; k < changed.size(); ++k) {
       const vcg::Triangle3<float>& t = tri[k];
@@ -701,10 +701,10 @@ class EditGuard {
     bool active = false, valid = false;
     std::vector<int> seeds;
   } memo_;
-  std::vector<std::pair<uint64_t, int>> faceCells_;  ///< DeviationAround's faces by grid cell
-  std::vector<vcg::Point3f> changedNormals_;          ///< ... and its changed faces' normals
-  /// Deviation's other buffers, kept so an edit's check allocates nothing once they have grown.
+  /// Deviation's buffers, kept so an edit's check allocates nothing once they have grown.
   struct DeviationScratch {
+    std::vector<std::pair<uint64_t, int>> faceCells;  ///< all's faces by grid cell
+    std::vector<vcg::Point3f> changedNormals;          ///< the changed faces' normals
     std::vector<const FaceType*> all;        ///< the changed faces and one more ring
     std::vector<int> near, inBox;            ///< input samples near the changed faces; a grid query's
     std::vector<vcg::Box3<float>> faceBoxes; ///< the changed faces' widened boxes
