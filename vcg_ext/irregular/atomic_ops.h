@@ -836,10 +836,10 @@ class AtomicOperations {
   Result RequireRegular(const std::vector<int>& vs) {
     for (int v : vs) {
       if (v < 0 || !ed_.IsLive(v)) return Result::Fail("the operation would reach past the mesh");
-      if (ed_.IsBoundary(v))
-        return Result::Fail(Say("the operation would touch boundary vertex ", v));
-      if (ed_.Valence(v) != 6)
-        return Result::Fail(Say("vertex ", v, " (valence ", ed_.Valence(v),
+      const int d = ed_.InteriorValence(v);
+      if (d < 0) return Result::Fail(Say("the operation would touch boundary vertex ", v));
+      if (d != 6)
+        return Result::Fail(Say("vertex ", v, " (valence ", d,
                                 ") is in the way: this step needs regular vertices around the irregular ones; "
                                 "try another direction or move the other irregular vertex first"));
     }
@@ -943,7 +943,7 @@ class AtomicOperations {
       const int u = ed_.Index(uv);
       for (VertexType* vv : ed_.Star(u).neighbors) {
         const int v = ed_.Index(vv);
-        if (v <= u || ed_.Valence(u) != 6 || ed_.Valence(v) != 6 || ed_.IsBoundary(u) || ed_.IsBoundary(v)) continue;
+        if (v <= u || ed_.InteriorValence(u) != 6 || ed_.InteriorValence(v) != 6) continue;
         int o[2];
         if (!ed_.Opposites(u, v, o)) continue;
         if (!((o[0] == sevens[0] && o[1] == sevens[1]) || (o[0] == sevens[1] && o[1] == sevens[0]))) continue;

@@ -323,7 +323,7 @@ class BoundaryReduction {
     const int d = ed_.Valence(v);
     for (auto* nb : ed_.Star(v).neighbors) {
       const int w = ed_.Index(nb);
-      if (ed_.IsBoundary(w) || ed_.Valence(w) != 12 - d || Frozen(w)) continue;
+      if (ed_.InteriorValence(w) != 12 - d || Frozen(w)) continue;
       for (int t : Targets(d == 5 ? v : w, d == 5 ? w : v)) {
         Plan p;
         p.kind = kPair, p.partner = w, p.target = t;

@@ -107,6 +107,8 @@ class MeshEditor {
   VertexStar<MeshType> Star(int i) { return StarOf<MeshType>(V(i)); }
   int Valence(int i) { return irregular::Valence<MeshType>(V(i)); }
   bool IsBoundary(int i) { return OnBoundary<MeshType>(V(i)); }
+  /// Valence of vertex i if it is interior, -1 on the boundary (topology.h: one walk for both).
+  int InteriorValence(int i) { return irregular::InteriorValence<MeshType>(V(i)); }
   /// Smallest valence a vertex may keep: 2 on the boundary (one face), 3 inside.
   static int MinValence(bool boundary) { return boundary ? 2 : 3; }
   /// Is (x, y) an edge with a face on one side only? False if they are not joined.

@@ -111,7 +111,11 @@ class ReductionState {
   ReductionState(MeshType& m, Editor& ed, const ReductionOptions& opt) : m_(m), ed_(ed), opt_(opt) {}
 
   bool Frozen(int v) const { return v >= 0 && size_t(v) < opt_.frozen.size() && opt_.frozen[size_t(v)]; }
-  bool IsInteriorIrregular(int v) { return ed_.IsLive(v) && !ed_.IsBoundary(v) && ed_.Valence(v) != 6; }
+  bool IsInteriorIrregular(int v) {
+    if (!ed_.IsLive(v)) return false;
+    const int d = ed_.InteriorValence(v);
+    return d >= 0 && d != 6;
+  }
   /// A boundary vertex whose valence differs from its regular one by the corner rule (topology.h).
   bool IsBoundaryIrregular(int v) {
     if (!ed_.IsLive(v)) return false;

@@ -204,6 +204,26 @@ bool OnBoundary(typename MeshType::VertexType* v, int maxValence = 4096) {
   return false;  // StarOf gives up too (a non-manifold walk), with boundary still false
 }
 
+/// Valence of v if it is an interior vertex, -1 if it lies on the boundary: OnBoundary and
+/// Valence in one walk (an interior fan closes counter-clockwise from the VF entry, a boundary
+/// fan meets a border edge on the way). The reduction asks "interior and of valence d?" of
+/// every vertex near an edit; the two walks were 3.5% of its time on the bull (0.9.22).
+template <class MeshType>
+int InteriorValence(typename MeshType::VertexType* v, int maxValence = 4096) {
+  typedef typename MeshType::FaceType FaceType;
+  if (v->cVFp() != nullptr) {
+    const Corner<FaceType> start{v->VFp(), v->VFi()};
+    Corner<FaceType> c = start;
+    for (int n = 1; n <= maxValence + 1; ++n) {
+      c = NextCornerCCW(c);
+      if (c.f == nullptr) return -1;
+      if (c.f == start.f && c.z == start.z) return n;
+    }
+  }
+  // no face, or a walk past the bound (not a manifold fan): what the two queries say
+  return OnBoundary<MeshType>(v, maxValence) ? -1 : Valence<MeshType>(v, maxValence);
+}
+
 /// The valence eq. 2 counts a vertex against: 6 inside, 4 on the boundary (paper sec. 4).
 /// This is the Gauss-Bonnet bookkeeping valence; for "is this boundary vertex irregular" use
 /// the boundary valence rule (RegularBoundaryValence), which also looks at the corner angle.
