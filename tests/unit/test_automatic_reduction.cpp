@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <random>
 #include <set>
 
 #include <vcg/complex/complex.h>
@@ -1249,6 +1250,81 @@ TEST(ReductionParts, OnlyEditsKeptInTheEndMakeAFailedVertexWorthRetrying) {
   EXPECT_FALSE(state.UnchangedSinceFailure(v, 4));
   EXPECT_TRUE(state.UnchangedSinceFailure(far, 4));  // 6 or more edges from what the edit touched
   EXPECT_FALSE(state.UnchangedSinceFailure(far, 24));
+}
+
+// The memo keeps the ball a walk found untouched and reads its stamps on the next query
+// instead of walking again: through 400 kept flips, collapses and splits (each stamping the
+// vertices whose valence it changed, as a kept edit's touched list does), and failures
+// renewed on the way, every answer (radius 3 or 6) is the walk's over the mesh as it is.
+TEST(ReductionParts, TheRepeatedFailureMemoAnswersAsAFreshWalkThroughRandomEdits) {
+  TMesh m;
+  test::RegularTorus(m, 48, 16, 3.f, 1.f);
+  MeshEditor<TMesh> ed(m);
+  ReductionOptions opt;
+  ReductionState<TMesh> state(m, ed, opt);
+  std::vector<long> edited, failed;
+  auto stampOf = [](const std::vector<long>& at, int v) { return size_t(v) < at.size() ? at[size_t(v)] : -1L; };
+  auto stamp = [](std::vector<long>& at, int v, long e) {
+    if (size_t(v) >= at.size()) at.resize(size_t(v) + 1, -1);
+    at[size_t(v)] = e;
+  };
+  std::mt19937 rng(11);
+  std::vector<int> watched;
+  for (int k = 0; k < 40; ++k) watched.push_back(int(rng() % m.vert.size()));
+  for (int v : watched) state.Failed(v), stamp(failed, v, state.Epoch());
+  int kept = 0, queries = 0, unchanged = 0, changed = 0;
+  for (int step = 0; step < 3000 && kept < 400; ++step) {
+    const int x = int(rng() % m.vert.size());
+    if (!ed.IsLive(x)) continue;
+    const VertexStar<TMesh> st = ed.Star(x);
+    const int y = ed.Index(st.neighbors[rng() % st.neighbors.size()]);
+    std::vector<int> touched;
+    Result r;
+    const int kind = int(rng() % 3);
+    if (kind == 0) {
+      int o[2];
+      if (!ed.Opposites(x, y, o)) continue;
+      r = ed.Flip(x, y);
+      touched = {x, y, o[0], o[1]};
+    } else if (kind == 1) {
+      int o[2];
+      if (!ed.Opposites(x, y, o) || ed.Valence(o[0]) < 5 || ed.Valence(o[1]) < 5) continue;
+      r = ed.Collapse(x, y);
+      touched = {x, y, o[0], o[1]};
+    } else {
+      const int z = ed.Index(st.neighbors[(size_t(ed.Star(x).IndexOf(ed.V(y))) + 3) % st.neighbors.size()]);
+      int created = -1;
+      r = ed.Split(x, y, z, &created);
+      touched = {x, y, z, created};
+    }
+    if (!r) continue;
+    state.EnterEdit();
+    state.Kept(touched);
+    state.LeaveEdit();
+    for (int t : touched) stamp(edited, t, state.Epoch());
+    ++kept;
+    if (kept % 7 == 0) {  // a failure renewed: its ball is forgotten
+      const int v = watched[rng() % watched.size()];
+      if (ed.IsLive(v)) state.Failed(v), stamp(failed, v, state.Epoch());
+    }
+    for (int v : watched) {
+      if (!ed.IsLive(v)) continue;
+      {
+        const int radius = v % 2 ? 3 : 6;  // one radius per vertex: the memo keeps one ball each
+        const long f = stampOf(failed, v);
+        const bool walk = !AnyWithin(m, v, radius, [&](int w) { return stampOf(edited, w) > f; });
+        ASSERT_EQ(state.UnchangedSinceFailure(v, radius), walk) << "vertex " << v << " radius " << radius
+                                                                << " after " << kept << " edits";
+        ++queries;
+        (walk ? unchanged : changed) += 1;
+      }
+    }
+  }
+  std::printf("%d edits kept, %d queries: %d unchanged, %d changed\n", kept, queries, unchanged, changed);
+  EXPECT_EQ(kept, 400);
+  EXPECT_GT(unchanged, 500);  // the memo's cached answers were asked for, and the walks' too
+  EXPECT_GT(changed, 500);
+  EXPECT_TRUE(CheckInvariants(m).ok) << CheckInvariants(m).reason;
 }
 
 // On a real mesh: split-and-absorbs that kept transports inside and were then undone whole

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <map>
+#include <unordered_map>
 #include <vector>
 
 #if defined(__GLIBC__)
@@ -245,6 +246,7 @@ class ReductionState {
     if (size_t(v) < failedAt_.size()) failedAt_[size_t(v)] = -1;
     if (size_t(v) < triedAt_.size()) triedAt_[size_t(v)] = -1;
     if (size_t(v) < triedUnchanged_.size()) triedUnchanged_[size_t(v)] = 0;
+    ForgetBall(v);
   }
   /// The guard undid an edit that tried to cancel or move `subjects`.
   void Undone(const std::vector<int>& subjects) {
@@ -258,17 +260,47 @@ class ReductionState {
   /// Guarded edits kept so far, inner ones included (also those inside an edit undone later).
   long Epoch() const { return epoch_; }
   /// A transport from v failed now.
-  void Failed(int v) { Stamp(failedAt_, v, epoch_); }
+  void Failed(int v) {
+    Stamp(failedAt_, v, epoch_);
+    ForgetBall(v);
+  }
   /// v's turn with the travel strategies kept nothing (tried now, or skipped as tried before
   /// and unchanged, or as given up): for the leftover reasons only (TriedUnchanged).
   void Tried(int v) { Stamp(triedAt_, v, epoch_); }
   /// True if a transport from v already failed and no edit kept since (an outermost one,
   /// Kept) touched a vertex within `radius` edges: trying again would fail the same way (the
   /// search is deterministic).
+  ///
+  /// The walk's vertices are kept (unchangedBall_) when it finds none: the next query for v
+  /// with the same radius reads their stamps instead of walking the rings again (about 1800
+  /// stars at the default travel; on the bull these walks were 2.7% of the run, 0.9.22). The
+  /// same answer: while no kept edit touched a vertex of that ball, every edge among its
+  /// vertices is still there and no new one joins them (an edit's touched vertices include,
+  /// for each edge it adds or removes, a vertex the edge's ends were joined to), so the ball
+  /// is the same. A touched one sends the query back to the walk.
   bool UnchangedSinceFailure(int v, int radius) {
     const long failed = StampOf(failedAt_, v);
     if (failed < 0) return false;
-    return !AnyWithin(m_, v, radius, [&](int x) { return StampOf(editedAt_, x) > failed; });
+    auto stampedSince = [&](int x) { return StampOf(editedAt_, x) > failed; };
+    auto cached = unchangedBall_.find(v);
+    if (cached != unchangedBall_.end()) {
+      if (cached->second.radius == radius &&
+          std::none_of(cached->second.ball.begin(), cached->second.ball.end(), stampedSince))
+        return true;
+      ballEntries_ -= cached->second.ball.size();
+      unchangedBall_.erase(cached);
+    }
+    std::vector<int> ball;
+    if (AnyWithin(m_, v, radius, [&](int x) {
+          ball.push_back(x);
+          return stampedSince(x);
+        }))
+      return false;
+    if (ballEntries_ + ball.size() <= kMaxBallEntries) {
+      ballEntries_ += ball.size();
+      unchangedBall_[v] = UnchangedBall{radius, std::move(ball)};
+    }
+    return true;
   }
 
   // ------------------------------------------------------------ bounded effort per region
@@ -375,6 +407,7 @@ class ReductionState {
     std::vector<long>().swap(editedAt_);
     std::vector<long>().swap(triedAt_);
     std::vector<long>().swap(failedAt_);
+    DropBalls();
     ReleaseFreedMemory();
   }
 
@@ -389,6 +422,7 @@ class ReductionState {
     editedAt_.clear();
     failedAt_.clear();
     triedAt_.clear();
+    DropBalls();
     undoneAt_.clear();
     removed_.clear();
     effort_.clear();
@@ -401,6 +435,24 @@ class ReductionState {
     int byReason[kRefusalKinds] = {};
     long givenUpAt = -1;                           ///< epoch it was given up at (-1: not given up)
   };
+
+  /// The vertices an UnchangedSinceFailure walk found none touched in, with its radius.
+  struct UnchangedBall {
+    int radius = 0;
+    std::vector<int> ball;
+  };
+  /// Bound on the vertices kept in all balls together (16 MB): past it, queries walk.
+  static constexpr size_t kMaxBallEntries = size_t(1) << 22;
+  void DropBalls() {
+    std::unordered_map<int, UnchangedBall>().swap(unchangedBall_);
+    ballEntries_ = 0;
+  }
+  void ForgetBall(int v) {
+    auto it = unchangedBall_.find(v);
+    if (it == unchangedBall_.end()) return;
+    ballEntries_ -= it->second.ball.size();
+    unchangedBall_.erase(it);
+  }
 
   static void Stamp(std::vector<long>& at, int v, long when) {
     if (v < 0) return;
@@ -426,6 +478,8 @@ class ReductionState {
   std::vector<char> triedUnchanged_;       ///< see TriedUnchanged
   std::map<int, int> undoneAt_;     ///< per vertex: edits the guard undid
   std::map<int, Effort> effort_;    ///< per irregular vertex whose turns had refusals: the bounded effort
+  std::unordered_map<int, UnchangedBall> unchangedBall_;  ///< per failed vertex (UnchangedSinceFailure)
+  size_t ballEntries_ = 0;          ///< vertices in unchangedBall_
   int turn_ = -1;                   ///< the vertex whose turn it is (-1: none)
 };
 
