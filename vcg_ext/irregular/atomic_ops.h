@@ -918,17 +918,6 @@ class AtomicOperations {
     return out;
   }
 
-  AtomicOutcome ApplyFirst(const std::vector<AtomicPrediction>& cands) {
-    AtomicOutcome last;
-    last.result = Result::Fail("no single flip, collapse or split around these vertices does it");
-    for (const AtomicPrediction& c : cands) {
-      AtomicOutcome o = Apply(c);
-      if (o) return o;
-      last = o;
-    }
-    return last;
-  }
-
   /// The inverse of QuadrupleVia::CollapseSplit: an interior edge (u, v) of regular vertices
   /// whose opposite vertices are the two v7 of the quadruple; collapsing v into u makes a v8
   /// and the two v7 regular; the v8 then splits along its edges to the two v5, three edges
@@ -991,6 +980,20 @@ class AtomicOperations {
     AtomicOutcome out = ApplyFirst(Candidates(group, test, what, withSplits));
     if (!out) return Refuse(out, "no single flip, collapse or split around these vertices does it");
     return out;
+  }
+
+  /// Applies the first of the candidates (Candidates, the dry run) that applies, as
+  /// FindAndApply does: for a caller that asks the dry run first and prepares the edit (its
+  /// guard) only when there is something to apply.
+  AtomicOutcome ApplyFirst(const std::vector<AtomicPrediction>& cands) {
+    AtomicOutcome last;
+    last.result = Result::Fail("no single flip, collapse or split around these vertices does it");
+    for (const AtomicPrediction& c : cands) {
+      AtomicOutcome o = Apply(c);
+      if (o) return o;
+      last = o;
+    }
+    return last;
   }
 
   /// The dry run of FindAndApply: every candidate whose predicted valence changes pass

@@ -48,11 +48,14 @@ class LocalCancellation {
   }
 
   /// Applies a removal around v if one exists and keeps it if the guard passes it.
+  /// The dry run first: most turns find no removal, and then the guard's measure of the
+  /// angles before (GuardedEdit) is not taken (the same edits as FindAndApply under the guard).
   bool CancelAround(ReductionReport& rep, int v) {
+    const std::vector<AtomicPrediction> removals = ops_.Candidates(
+        {v}, [&](const ValenceChanges& b, const ValenceChanges& a) { return Reduces(b, a); }, "cancellation", false);
+    if (removals.empty()) return false;
     GuardedEdit<MeshType> g(guard_, rep, {v});
-    AtomicOutcome o = ops_.FindAndApply(
-        {v}, [&](const ValenceChanges& b, const ValenceChanges& a) { return Reduces(b, a); },
-        "cancellation", false);
+    AtomicOutcome o = ops_.ApplyFirst(removals);
     if (!o) return false;
     std::vector<int> touched = state_.Changed(o);
     bool cuts = false;
