@@ -976,8 +976,8 @@ class AtomicOperations {
   /// after)` and whose group vertices are all touched. In `after`, a deleted vertex has valence
   /// 0 and a vertex created by a split has index -1. O(size of the neighbourhood squared).
   AtomicOutcome FindAndApply(const std::vector<int>& group, const ChangeTest& test, const std::string& what,
-                             bool withSplits = true) {
-    AtomicOutcome out = ApplyFirst(Candidates(group, test, what, withSplits));
+                             bool withSplits = true, int minIrregularBefore = 0) {
+    AtomicOutcome out = ApplyFirst(Candidates(group, test, what, withSplits, minIrregularBefore));
     if (!out) return Refuse(out, "no single flip, collapse or split around these vertices does it");
     return out;
   }
@@ -999,8 +999,14 @@ class AtomicOperations {
   /// The dry run of FindAndApply: every candidate whose predicted valence changes pass
   /// `test` and whose first graph operation passes its Can* check, in the order FindAndApply
   /// tries them. A created vertex has its predicted index (m.vert.size()).
+  /// minIrregularBefore: a candidate whose vertices before hold fewer irregular vertices
+  /// (valence != 6) is dropped before `test` is asked; a test that can only pass with at least
+  /// that many (a removal of two: LocalCancellation::Reduces) gets the same candidates, without
+  /// building the two valence lists of every candidate it would refuse (most of them: a
+  /// step around a lone irregular vertex touches no other).
   std::vector<AtomicPrediction> Candidates(const std::vector<int>& group, const ChangeTest& test,
-                                           const std::string& what, bool withSplits = true) {
+                                           const std::string& what, bool withSplits = true,
+                                           int minIrregularBefore = 0) {
     std::vector<AtomicPrediction> result;
     std::vector<int> area = group;
     for (int v : group) {
@@ -1071,6 +1077,12 @@ class AtomicOperations {
     for (const Scored& sc : cands) {
       const GraphStep& c = sc.c;
       const int* o = sc.o;
+      if (minIrregularBefore > 0) {
+        const int n = c.kind == GraphStep::kSplit ? (val(c.x) != 6) + (val(c.y) != 6) + (val(c.z) != 6)
+                                                  : (val(c.x) != 6) + (val(c.y) != 6) + (val(o[0]) != 6) +
+                                                        (o[1] != o[0] && val(o[1]) != 6);
+        if (n < minIrregularBefore) continue;
+      }
       if (c.kind == GraphStep::kSplit)
         before = {{c.x, val(c.x)}, {c.y, val(c.y)}, {c.z, val(c.z)}};
       else

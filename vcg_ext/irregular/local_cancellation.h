@@ -52,7 +52,8 @@ class LocalCancellation {
   /// angles before (GuardedEdit) is not taken (the same edits as FindAndApply under the guard).
   bool CancelAround(ReductionReport& rep, int v) {
     const std::vector<AtomicPrediction> removals = ops_.Candidates(
-        {v}, [&](const ValenceChanges& b, const ValenceChanges& a) { return Reduces(b, a); }, "cancellation", false);
+        {v}, [&](const ValenceChanges& b, const ValenceChanges& a) { return Reduces(b, a); }, "cancellation", false,
+        kIrregularForARemoval);
     if (removals.empty()) return false;
     GuardedEdit<MeshType> g(guard_, rep, {v});
     AtomicOutcome o = ops_.ApplyFirst(removals);
@@ -91,7 +92,7 @@ class LocalCancellation {
       if (!ed_.IsLive(x)) continue;
       AtomicOutcome c = ops_.FindAndApply(
           {x}, [&](const ValenceChanges& bf, const ValenceChanges& af) { return Reduces(bf, af); },
-          "cancellation", false);
+          "cancellation", false, kIrregularForARemoval);
       if (!c) continue;
       state_.Record(c, touched);
       return true;
@@ -119,6 +120,9 @@ class LocalCancellation {
   }
 
   std::vector<int> exclude;  ///< irregular vertices a removal must not involve (set by a transport)
+  /// Reduces passes only a step that removes at least two irregular vertices, so one whose
+  /// vertices hold fewer than two is not asked (AtomicOperations::Candidates' minIrregularBefore).
+  static constexpr int kIrregularForARemoval = 2;
 
   /// True if (a, b) is an adjacent 5-7 pair with no other irregular vertex (nor a boundary
   /// vertex) within 2 edges of either: then no removal of RemovalAt({a, b}) exists, so the
