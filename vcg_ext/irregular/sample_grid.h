@@ -137,7 +137,7 @@ class SampleGrid {
     const int64_t lo[3] = {Cell(box.min[0]), Cell(box.min[1]), Cell(box.min[2])};
     const int64_t hi[3] = {Cell(box.max[0]), Cell(box.max[1]), Cell(box.max[2])};
     // the occupied blocks first; then the box's cells within each, an empty cell skipped by
-    // its bit (bunny00 at 20K: a query spans about 500 cells, mostly empty)
+    // its bit (a query box is several cells wide on each axis, and most of its cells are empty)
     for (int64_t bx = Block(lo[0]); bx <= Block(hi[0]); ++bx)
       for (int64_t by = Block(lo[1]); by <= Block(hi[1]); ++by)
         for (int64_t bz = Block(lo[2]); bz <= Block(hi[2]); ++bz) {
