@@ -283,13 +283,10 @@ class ReductionState {
     if (failed < 0) return false;
     auto stampedSince = [&](int x) { return StampOf(editedAt_, x) > failed; };
     auto cached = unchangedBall_.find(v);
-    if (cached != unchangedBall_.end()) {
-      if (cached->second.radius == radius &&
-          std::none_of(cached->second.ball.begin(), cached->second.ball.end(), stampedSince))
-        return true;
-      ballEntries_ -= cached->second.ball.size();
-      unchangedBall_.erase(cached);
-    }
+    if (cached != unchangedBall_.end() && cached->second.radius == radius &&
+        std::none_of(cached->second.ball.begin(), cached->second.ball.end(), stampedSince))
+      return true;
+    ForgetBall(v);
     std::vector<int> ball;
     if (AnyWithin(m_, v, radius, [&](int x) {
           ball.push_back(x);

@@ -88,9 +88,10 @@ class SampleGrid {
     for (size_t i = 0; i < points_.size(); ++i) {
       const auto& p = points_[i];
       const int64_t c[3] = {Cell(p[0]), Cell(p[1]), Cell(p[2])};
-      const auto in = blockOf_.emplace(Key(Block(c[0]), Block(c[1]), Block(c[2])), int(blocks_.size()));
+      const int64_t b[3] = {Block(c[0]), Block(c[1]), Block(c[2])};
+      const auto in = blockOf_.emplace(Key(b[0], b[1], b[2]), int(blocks_.size()));
       if (in.second) blocks_.emplace_back(), members.emplace_back();
-      members[size_t(in.first->second)].emplace_back(LocalCell(c[0], c[1], c[2]), int(i));
+      members[size_t(in.first->second)].emplace_back(LocalCell(c[0], c[1], c[2], b), int(i));
     }
     for (size_t b = 0; b < blocks_.size(); ++b) {
       std::sort(members[b].begin(), members[b].end());
@@ -151,7 +152,7 @@ class SampleGrid {
           for (int64_t x = from[0]; x <= to[0]; ++x)
             for (int64_t y = from[1]; y <= to[1]; ++y)
               for (int64_t z = from[2]; z <= to[2]; ++z) {
-                const int local = int(((x - b[0] * kBlock) * kBlock + (y - b[1] * kBlock)) * kBlock + (z - b[2] * kBlock));
+                const int local = LocalCell(x, y, z, b);
                 const uint64_t word = blk.occupied[local >> 6], bit = uint64_t(1) << (local & 63);
                 if (!(word & bit)) continue;
                 const int k = blk.rank[local >> 6] + __builtin_popcountll(word & (bit - 1));
@@ -176,9 +177,10 @@ class SampleGrid {
   int64_t Cell(float c) const { return int64_t(std::floor(c / cell_)); }
   /// The block of a cell index: floor division, also for negative indices.
   static int64_t Block(int64_t cell) { return cell >= 0 ? cell / kBlock : -((-cell + kBlock - 1) / kBlock); }
-  /// A cell's place in its block: (x * kBlock + y) * kBlock + z of its offsets from the block's corner.
-  static int LocalCell(int64_t x, int64_t y, int64_t z) {
-    return int(((x - Block(x) * kBlock) * kBlock + (y - Block(y) * kBlock)) * kBlock + (z - Block(z) * kBlock));
+  /// A cell's place in its block b (block indices): (x * kBlock + y) * kBlock + z of its offsets
+  /// from the block's corner.
+  static int LocalCell(int64_t x, int64_t y, int64_t z, const int64_t b[3]) {
+    return int(((x - b[0] * kBlock) * kBlock + (y - b[1] * kBlock)) * kBlock + (z - b[2] * kBlock));
   }
   static uint64_t Key(int64_t x, int64_t y, int64_t z) {
     // 21 bits per axis: enough for any mesh at any cell size used here
