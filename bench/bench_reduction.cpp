@@ -102,7 +102,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> models;
   ReductionOptions opt;
   std::string saveRemeshed, saveResult, peakFile;
-  bool memory = false, loadOnly = false;
+  bool memory = false, loadOnly = false, listLeftovers = false;
   int maxTravel = opt.maxTravel, glideTravel = -1, maxRefusals = -1;
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
@@ -144,6 +144,7 @@ int main(int argc, char** argv) {
     else if (key == "nearMeetingTriesPerKept") opt.nearMeetingTriesPerKept = int(v);
     else if (key == "memory") memory = v != 0;
     else if (key == "loadOnly") loadOnly = v != 0;
+    else if (key == "listLeftovers") listLeftovers = v != 0;
     else {
       std::fprintf(stderr, "unknown option %s\n", key.c_str());
       return 2;
@@ -215,6 +216,14 @@ int main(int argc, char** argv) {
                 r.leftovers.Summary().c_str(), r.travel, r.undone, r.undoneAngle, r.undoneHausdorff, r.undoneFrozen,
                 r.undoneBoundary, r.anglePolished, r.anglePolishBelow, r.farMeetingsKept, r.farMeetings,
                 r.nearMeetingsKept, r.nearMeetings, r.meetingRounds, r.finalSweepsUndone ? "; final sweeps undone" : "");
+    if (listLeftovers)  // one line per leftover: why it stays (leftover_reasons.h) and what is around it
+      for (const LeftoverVertex& lv : r.leftovers.vertices)
+        std::printf("  leftover v%d valence %d %s: partner %d at %d edges, nearest irregular %d, curvature %.3f "
+                    "(%d rings), thickness %.1f, undone nearby %d, at (%g %g %g)\n",
+                    lv.vertex, lv.valence, LeftoverReasonName(lv.reason), lv.partner, lv.partnerDistance,
+                    lv.nearestIrregular, lv.curvature, lv.curvatureRings, lv.thickness, lv.undoneNearby,
+                    double(m.vert[size_t(lv.vertex)].P()[0]), double(m.vert[size_t(lv.vertex)].P()[1]),
+                    double(m.vert[size_t(lv.vertex)].P()[2]));
     std::fflush(stdout);
   }
   const double peak = StatusMiB("VmHWM");

@@ -1141,6 +1141,7 @@ TEST(AutomaticReduction, TravelGrowsWithTheSquareRootOfTheVertexCountUpToItsBoun
     const ReductionOptions scaled = ScaleToResolution(opt, run.vertices);
     EXPECT_EQ(scaled.maxTravel, run.rep.travel);
     EXPECT_EQ(scaled.nearMeetingTries, int(std::lround(8 * scale)));
+    EXPECT_EQ(scaled.angleRepairRounds, int(std::lround(6 * scale)));
     EXPECT_LE(run.rep.nearMeetings, scaled.nearMeetingTries + scaled.nearMeetingTriesPerKept * run.rep.nearMeetingsKept);
     if (c.first == 750) EXPECT_GE(run.rep.travel, 23);  // about twice 12 at four times the vertices
     if (c.first == 300) EXPECT_TRUE(c.second > 0 ? run.rep.travel == 24 : run.rep.travel >= 36)
@@ -1149,18 +1150,19 @@ TEST(AutomaticReduction, TravelGrowsWithTheSquareRootOfTheVertexCountUpToItsBoun
 }
 
 // The options a mesh's resolution scales, exactly, at the defaults (20K reference, bound 2):
-// the travels and the near meetings' bound by sqrt(V / 20000), never below the defaults and
+// the travels, the near meetings' bound and the angle repair rounds by sqrt(V / 20000), never below the defaults and
 // never above twice them; the other options as given.
-TEST(AutomaticReduction, ScaleToResolutionScalesTheTravelsAndTheNearMeetingsBound) {
+TEST(AutomaticReduction, ScaleToResolutionScalesTheTravelsTheNearMeetingsAndTheAngleRepairs) {
   const ReductionOptions d;
-  struct Case { int vertices, travel, glide, near; };
-  const Case cases[] = {{5000, 12, 30, 8}, {20000, 12, 30, 8}, {45000, 18, 45, 12}, {80000, 24, 60, 16},
-                        {320000, 24, 60, 16}};
+  struct Case { int vertices, travel, glide, near, repairs; };
+  const Case cases[] = {{5000, 12, 30, 8, 6}, {20000, 12, 30, 8, 6}, {45000, 18, 45, 12, 9},
+                        {80000, 24, 60, 16, 12}, {320000, 24, 60, 16, 12}};
   for (const Case& c : cases) {
     const ReductionOptions s = ScaleToResolution(d, c.vertices);
     EXPECT_EQ(s.maxTravel, c.travel) << c.vertices;
     EXPECT_EQ(s.glideTravel, c.glide) << c.vertices;
     EXPECT_EQ(s.nearMeetingTries, c.near) << c.vertices;
+    EXPECT_EQ(s.angleRepairRounds, c.repairs) << c.vertices;
     EXPECT_EQ(s.nearMeetingTriesPerKept, d.nearMeetingTriesPerKept) << c.vertices;
     EXPECT_EQ(s.maxRefusalsPerRegion, d.maxRefusalsPerRegion) << c.vertices;
     EXPECT_EQ(s.farMeetingTravel, d.farMeetingTravel) << c.vertices;
@@ -1170,6 +1172,7 @@ TEST(AutomaticReduction, ScaleToResolutionScalesTheTravelsAndTheNearMeetingsBoun
   const ReductionOptions s = ScaleToResolution(fixed, 80000);
   EXPECT_EQ(s.maxTravel, 12);
   EXPECT_EQ(s.nearMeetingTries, 8);
+  EXPECT_EQ(s.angleRepairRounds, 6);
 }
 
 // A transport's route refused for triangles a little under the minimum angle is relaxed again

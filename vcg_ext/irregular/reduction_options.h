@@ -98,7 +98,9 @@ struct ReductionOptions {
                                         ///< those triangles, up to this many times, and kept if then none is left
                                         ///< (0: never). bunny00 / knot1 / elephant at 20K: 72 / 54 / 128 left
                                         ///< without, 62 / 46 / 126 with (3 rounds: 60 / 56 / 126); at maxTravel 24
-                                        ///< bunny00 / knot1: 46 / 34 without, 38 / 22 with; about the same time
+                                        ///< bunny00 / knot1: 46 / 34 without, 38 / 22 with; about the same time.
+                                        ///< On a mesh finer than travelReferenceVertices it grows as the travel
+                                        ///< does (ScaleToResolution)
   double angleRepairSlackDeg = 8;       ///< default 8 (not a filter parameter): ... only when the smallest angle
                                         ///< there is at most this far under the minimum (farther, as on thin
                                         ///< parts, the rounds cost a quarter more time and save nothing)
@@ -219,7 +221,14 @@ inline void SetFilterTravel(ReductionOptions& opt, int maxTravel) {
 /// meetings' bound (nearMeetingTries) grows by s too: a finer mesh leaves more candidates for
 /// them (bunny00, the peer's outputs: 29 at 80K, 4 at 20K), and at 80K the unscaled 8 tries
 /// stopped them before the first kept one (80 left, 0 of 8 kept; with 16, 70 left, 5 of 29
-/// kept, every candidate tried; the same time). Never shrinks: a coarser mesh keeps opt.
+/// kept, every candidate tried; the same time). So do the angle repair rounds (angleRepairRounds):
+/// a route of twice the steps leaves twice the stretch of squeezed triangles to lift, and at
+/// 80K the repairs' 6 rounds left most of what stayed refused for its angles ("budget" in the
+/// leftover reasons: bunny00 28 of 70). The peer's outputs at 80K vertices, native bench, 6
+/// rounds -> 12: bunny00 70 -> 60, knot1 58 -> 58, the elephant 162 -> 161, bear 95 -> 79,
+/// homer 125 -> 117 (475 left instead of 510); bunny00 at 80K with 10 / 11 / 14 / 16 rounds:
+/// 70 / 64 / 68 / 60, a trend under the noise of which routes happen to pass. Never shrinks: a
+/// coarser mesh keeps opt (at 20K, 12 rounds left bunny00 48 instead of 42).
 inline ReductionOptions ScaleToResolution(ReductionOptions opt, int vertices) {
   if (opt.travelReferenceVertices > 0 && vertices > opt.travelReferenceVertices) {
     double s = std::sqrt(double(vertices) / double(opt.travelReferenceVertices));
@@ -227,6 +236,7 @@ inline ReductionOptions ScaleToResolution(ReductionOptions opt, int vertices) {
     opt.maxTravel = int(std::lround(opt.maxTravel * s));
     opt.glideTravel = int(std::lround(opt.glideTravel * s));
     opt.nearMeetingTries = int(std::lround(opt.nearMeetingTries * s));
+    opt.angleRepairRounds = int(std::lround(opt.angleRepairRounds * s));
   }
   return opt;
 }
