@@ -359,6 +359,38 @@ TEST(MemoryDistanceGrid, SameDistancesAsASurfaceProjectorCopyToTheBit) {
   EXPECT_EQ(HausdorffPercent(a, SurfaceProjector(b)), HausdorffPercentByProjectorCopy(a, SurfaceProjector(b)));
 }
 
+// OneSidedHausdorff to a SurfaceProjector tries the input faces the projector last projected
+// a sample's vertex or corners onto before it searches (VertexHint): a witness only ever says
+// "within the maximum so far", so the measure is the one a projector without hints gives (up
+// to the last bits of ClosestFrom's ties between faces that share an edge), whether the hints
+// are the mesh's own (its vertices projected, as relaxation leaves them) or foreign keys that
+// point anywhere.
+TEST(SurfaceProjectorHints, CornerHintsLeaveTheHausdorffMeasureAsItWas) {
+  TMesh a, b;
+  ASSERT_TRUE(Remeshed(a, "bunny00.off", 3000)) << "corpus mesh missing (run scripts/setup.sh)";
+  ASSERT_TRUE(Remeshed(b, "bunny00.off", 1200));
+  RandomEdits(b, 100, 5);  // holes in the vectors: deleted vertices are skipped
+  const SurfaceProjector plain(a), own(a), foreign(a);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(-1, 1);
+  const float diag = plain.Diagonal();
+  for (size_t i = 0; i < b.vert.size(); ++i) {
+    if (b.vert[i].IsD()) continue;
+    own.ClosestForVertex(i, vcg::Point3f::Construct(b.vert[i].cP()));
+    // a key's hint set from a point elsewhere on the surface, up to a tenth of the diagonal away
+    const vcg::Point3f elsewhere = vcg::Point3f::Construct(b.vert[i].cP()) + vcg::Point3f(u(rng), u(rng), u(rng)) * (0.1f * diag);
+    foreign.ClosestForVertex(i, elsewhere);
+  }
+  const double without = OneSidedHausdorff(b, plain);
+  ASSERT_GT(without, 1e-4 * diag);  // two remeshings of a curved surface differ
+  EXPECT_NEAR(OneSidedHausdorff(b, own), without, 1e-6 * diag);
+  EXPECT_NEAR(OneSidedHausdorff(b, foreign), without, 1e-6 * diag);
+  // a mesh of other indices than the one the hints were set for (a's vertices: keys past b's
+  // hints find none, the others someone else's face)
+  EXPECT_NEAR(OneSidedHausdorff(a, own), OneSidedHausdorff(a, plain), 1e-6 * diag);
+  EXPECT_NEAR(HausdorffPercent(b, own), HausdorffPercent(b, plain), 1e-6 * 100);
+}
+
 TEST(SurfaceProjectorHints, ClosestFromFindsClosestsDistanceWhateverTheHint) {
   TMesh a;
   ASSERT_TRUE(Remeshed(a, "bunny00.off", 3000)) << "corpus mesh missing (run scripts/setup.sh)";
