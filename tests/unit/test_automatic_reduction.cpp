@@ -1150,8 +1150,8 @@ TEST(AutomaticReduction, TravelGrowsWithTheSquareRootOfTheVertexCountUpToItsBoun
 }
 
 // The options a mesh's resolution scales, exactly, at the defaults (20K reference, bound 2):
-// the travels, the near meetings' bound and the angle repair rounds by sqrt(V / 20000), never below the defaults and
-// never above twice them; the other options as given.
+// the travels, the near meetings' bound and the angle repair rounds by sqrt(V / 20000), never
+// below the defaults and never above twice them; the other options as given.
 TEST(AutomaticReduction, ScaleToResolutionScalesTheTravelsTheNearMeetingsAndTheAngleRepairs) {
   const ReductionOptions d;
   struct Case { int vertices, travel, glide, near, repairs; };

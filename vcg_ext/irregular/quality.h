@@ -107,16 +107,7 @@ double OneSidedHausdorff(const MeshType& a, const SurfaceProjector& to) {
   // 20 inputs of the full set.
   const proj_detail::PFace* hint = nullptr;
   return MaxSampleDistance(a, [&](const vcg::Point3f& p, double mx, const size_t* corners, size_t n) {
-    if (mx > 0) {
-      if (SurfaceProjector::NearFace(hint, p, float(mx))) return mx;
-      for (size_t z = 0; z < n; ++z) {
-        const proj_detail::PFace* h = to.VertexHint(corners[z]);
-        if (h != hint && SurfaceProjector::NearFace(h, p, float(mx))) {
-          hint = h;
-          return mx;
-        }
-      }
-    }
+    if (mx > 0 && to.NearHints(hint, p, float(mx), corners, n)) return mx;
     float d = 0;
     const proj_detail::PFace* f = nullptr;
     to.ClosestFrom(hint, p, &d, nullptr, 0, &f);

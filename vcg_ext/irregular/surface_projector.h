@@ -195,6 +195,22 @@ class SurfaceProjector {
     return vcg::face::PointDistanceBase(*f, p, d, q);
   }
 
+  /// Is p within r of `hint`, or else of the face VertexHint gives for one of keys[0..n) (the
+  /// vertices p lies among)? The latter becomes the hint. A witness only: any face of Mesh()
+  /// within r proves p's distance at most r, whatever the keys (the edit guard's probes and
+  /// the final Hausdorff measure skip their searches so).
+  bool NearHints(const proj_detail::PFace*& hint, const Coord& p, float r, const size_t* keys, size_t n) const {
+    if (NearFace(hint, p, r)) return true;
+    for (size_t k = 0; k < n; ++k) {
+      const proj_detail::PFace* h = VertexHint(keys[k]);
+      if (h != hint && NearFace(h, p, r)) {
+        hint = h;
+        return true;
+      }
+    }
+    return false;
+  }
+
   float Diagonal() const { return diag_; }
   const PMesh& Mesh() const { return copy_; }
 
