@@ -149,24 +149,32 @@ class SampleGrid {
           int64_t from[3], to[3];
           for (int a = 0; a < 3; ++a)
             from[a] = std::max(lo[a], b[a] * kBlock), to[a] = std::min(hi[a], b[a] * kBlock + kBlock - 1);
+          // A column of a block's cells along z (fixed x, y) is one byte of its occupancy bits
+          // (LocalCell): the occupied cells of the box's run along it are the set bits of that
+          // byte within the run, visited in increasing z as a cell-by-cell loop would.
+          const int zlo = int(from[2] - b[2] * kBlock), zhi = int(to[2] - b[2] * kBlock);
+          const uint64_t runMask = ((uint64_t(2) << zhi) - 1) & ~((uint64_t(1) << zlo) - 1);
           for (int64_t x = from[0]; x <= to[0]; ++x)
-            for (int64_t y = from[1]; y <= to[1]; ++y)
-              for (int64_t z = from[2]; z <= to[2]; ++z) {
-                const int local = LocalCell(x, y, z, b);
-                const uint64_t word = blk.occupied[local >> 6], bit = uint64_t(1) << (local & 63);
-                if (!(word & bit)) continue;
+            for (int64_t y = from[1]; y <= to[1]; ++y) {
+              const int column = LocalCell(x, y, b[2] * kBlock, b);
+              const uint64_t word = blk.occupied[column >> 6];
+              for (uint64_t run = (word >> (column & 63)) & runMask; run != 0; run &= run - 1) {
+                const int local = column + __builtin_ctzll(run);
+                const uint64_t bit = uint64_t(1) << (local & 63);
                 const int k = blk.rank[local >> 6] + __builtin_popcountll(word & (bit - 1));
                 for (int j = blk.start[size_t(k)]; j < blk.start[size_t(k) + 1]; ++j) {
                   const int i = blk.points[size_t(j)];
                   if (box.IsIn(points_[size_t(i)])) out.push_back(i);
                 }
               }
+            }
         }
   }
 
  private:
   static constexpr int64_t kBlock = 8;  ///< cells per block edge
   static constexpr int kWords = int(kBlock * kBlock * kBlock / 64);
+  static_assert(kBlock == 8, "InBox reads a column of a block's cells as one byte of its occupancy bits");
   /// The cells of a block that hold points, and their points.
   struct CellBlock {
     uint64_t occupied[kWords] = {};  ///< bit LocalCell: the cell holds a point
