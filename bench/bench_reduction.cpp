@@ -11,7 +11,7 @@
 // (maxRefusalsPerRegion; 0: no bound), partialAbsorption (0/1), reuseDeadSlots (0/1), boundarySlide (0/1),
 // refusedRouteMemo (0/1), farMeetingReach, farMeetingTravel (0: no far meetings), farMeetingRounds,
 // nearMeetingTries (0: no near meetings), nearMeetingTriesPerKept, angleRepairRounds, angleRepairSlack, travelReference (travelReferenceVertices),
-// maxTravelScale, creaseDeg, anglePolish (anglePolishDeg; 0: none), anglePolishRounds.
+// maxTravelScale, creaseDeg, anglePolish (anglePolishDeg; 0: none), anglePolishRounds, partialSweepUndo (0/1).
 // files: saveRemeshed=<path> writes the remeshed input (OFF), saveResult=<path> the result, for
 // profiling the reduction alone on a fixed input and for comparing two runs byte by byte (with
 // several models, the model's name is appended).
@@ -133,6 +133,7 @@ int main(int argc, char** argv) {
     else if (key == "reuseDeadSlots") opt.reuseDeadSlots = v != 0;
     else if (key == "boundarySlide") opt.boundarySlide = v != 0;
     else if (key == "refusedRouteMemo") opt.refusedRouteMemo = v != 0;
+    else if (key == "partialSweepUndo") opt.partialSweepUndo = v != 0;
     else if (key == "creaseDeg") opt.creaseDeg = v;
     else if (key == "anglePolish") opt.anglePolishDeg = v;
     else if (key == "anglePolishRounds") opt.anglePolishRounds = int(v);
@@ -215,7 +216,11 @@ int main(int argc, char** argv) {
                 "far meetings %d of %d, near %d of %d in %d rounds%s\n",
                 r.leftovers.Summary().c_str(), r.travel, r.undone, r.undoneAngle, r.undoneHausdorff, r.undoneFrozen,
                 r.undoneBoundary, r.anglePolished, r.anglePolishBelow, r.farMeetingsKept, r.farMeetings,
-                r.nearMeetingsKept, r.nearMeetings, r.meetingRounds, r.finalSweepsUndone ? "; final sweeps undone" : "");
+                r.nearMeetingsKept, r.nearMeetings, r.meetingRounds,
+                r.finalSweepsUndone                 ? "; final sweeps undone"
+                : r.finalSweepsRestored > 0 ? "; final sweeps undone around triangles under the bound"
+                                                    : "");
+    if (r.finalSweepsRestored > 0) std::printf("  final sweeps: %d vertices put back\n", r.finalSweepsRestored);
     if (listLeftovers)  // one line per leftover: why it stays (leftover_reasons.h) and what is around it
       for (const LeftoverVertex& lv : r.leftovers.vertices)
         std::printf("  leftover v%d valence %d %s: partner %d at %d edges, nearest irregular %d, curvature %.3f "

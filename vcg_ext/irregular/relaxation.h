@@ -472,19 +472,26 @@ RelaxReport LocalRelax(MeshType& m, const std::vector<int>& region, const Surfac
 
 namespace relax_detail {
 
-/// Smallest angle of a face in degrees, computed exactly as MeasureShape (quality.h) computes
-/// it, so that the guard of GlobalRelax and the measures a caller takes agree to the last bit.
-template <class FaceType>
-double FaceMinAngleDeg(const FaceType* f) {
+/// The smallest angle in degrees of the triangle p0, p1, p2 (FaceMinAngleDeg of a face there).
+template <class CoordType>
+double MinAngleDegOf(const CoordType& p0, const CoordType& p1, const CoordType& p2) {
+  const CoordType* p[3] = {&p0, &p1, &p2};
   double mn = 180;
   for (int z = 0; z < 3; ++z) {
-    auto a = f->cP((z + 1) % 3) - f->cP(z), b = f->cP((z + 2) % 3) - f->cP(z);
+    auto a = *p[(z + 1) % 3] - *p[z], b = *p[(z + 2) % 3] - *p[z];
     double la = a.Norm(), lb = b.Norm();
     double ang =
         (la > 0 && lb > 0) ? std::acos(std::max(-1.0, std::min(1.0, double(a.dot(b)) / (la * lb)))) * 180 / M_PI : 0;
     mn = std::min(mn, ang);
   }
   return mn;
+}
+
+/// Smallest angle of a face in degrees, computed exactly as MeasureShape (quality.h) computes
+/// it, so that the guard of GlobalRelax and the measures a caller takes agree to the last bit.
+template <class FaceType>
+double FaceMinAngleDeg(const FaceType* f) {
+  return MinAngleDegOf(f->cP(0), f->cP(1), f->cP(2));
 }
 
 template <class CoordType>
