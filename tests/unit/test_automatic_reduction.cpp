@@ -1590,10 +1590,11 @@ TEST(AutomaticReduction, FarMeetingsTryOnlyPartnersJustBeyondTheTravelAndCancelS
 // are put back where they were before the sweeps (UndoSweepsAround), and only there; the rest
 // of the sweeps stay. Compared face by face and vertex by vertex with the same run without
 // sweeps (finalLocalSweeps 0: the positions before them, on the same connectivity) and with
-// the sweeps kept whole (partialSweepUndo false), which do push triangles under it here. (The
-// share under 30 degrees is at most the one before the sweeps; it can be above the whole
-// sweeps', which also lift triangles next to those they push under: the bull at 5K, 2.13%
-// against 2.05%.)
+// the sweeps kept whole (partialSweepUndo false), which do push triangles under it here. The
+// share under 30 degrees is at most the one before the sweeps (the bull at 5K: 2.23% before,
+// 2.05% with the whole sweeps, 2.01% with the partial undo, 286 vertices put back of 7687
+// moved; it could in principle end above the whole sweeps', which also lift triangles next to
+// those they push under).
 TEST(AutomaticReduction, FinalSweepsPushNoTriangleUnderTheAngleBound) {
   const char* model = "bull.off";
   const int size = 5000;
@@ -1646,7 +1647,7 @@ TEST(AutomaticReduction, FinalSweepsPushNoTriangleUnderTheAngleBound) {
   }
   EXPECT_EQ(putBack, rk.finalSweepsRestored);
   EXPECT_GT(putBack, 0);
-  EXPECT_GT(swept, 4 * putBack);
+  EXPECT_GT(swept, 10 * putBack);
   // the share under 30 degrees and the smallest angle: as before the sweeps, or better
   EXPECT_LE(MeasureShape(kept).shareBelow30, MeasureShape(before).shareBelow30);
   EXPECT_GE(MeasureShape(kept).minAngleDeg, MeasureShape(before).minAngleDeg);

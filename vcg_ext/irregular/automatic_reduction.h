@@ -537,12 +537,14 @@ class AutomaticReduction {
   }
 
   /// Puts back, where they were before the final sweeps (positions `before`, per vertex of
-  /// `all`), the vertices the sweeps moved around each triangle they pushed under the angle
-  /// bound: a triangle whose smallest angle is now under both the bound and its own smallest
-  /// angle before the sweeps. Each round puts back the moved vertices within one edge of every
-  /// such triangle; a vertex put back next to a relaxed one can squeeze a triangle between
-  /// them, which the next round finds (the positions before have none, so the rounds can only
-  /// end there). The rest of the sweeps stay. After it, no triangle is under the bound unless
+  /// `all`), the vertices the sweeps moved of each triangle they pushed under the angle bound:
+  /// a triangle whose smallest angle is now under both the bound and its own smallest angle
+  /// before the sweeps. Each round puts back the moved corners of every such triangle (their
+  /// 1-rings too put back 3-4x as many vertices and left as many or more triangles under 30
+  /// degrees: the full set at 20K, the man 3.80% against 3.74%); a vertex put back next to a
+  /// relaxed one can squeeze a triangle between them, which the next round finds (the
+  /// positions before have none, so the rounds can only end there). The rest of the sweeps
+  /// stay. After it, no triangle is under the bound unless
   /// it was before the sweeps, and none lost angle there: the sweeps raise neither the share
   /// under the bound nor lower the smallest angle (issue 14 asks this of the global
   /// relaxation). Why: one triangle under the bound made the sweeps of the whole mesh be
@@ -572,7 +574,7 @@ class AutomaticReduction {
       std::sort(seeds.begin(), seeds.end());
       seeds.erase(std::unique(seeds.begin(), seeds.end()), seeds.end());
       int put = 0;
-      for (int v : KRing(m_, seeds, 1)) {
+      for (int v : seeds) {
         const int k = slot[size_t(v)];
         if (k < 0 || ed_.V(v)->P() == before[size_t(k)]) continue;
         ed_.V(v)->P() = before[size_t(k)];
