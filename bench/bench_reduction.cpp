@@ -218,7 +218,7 @@ int main(int argc, char** argv) {
                 r.undoneBoundary, r.anglePolished, r.anglePolishBelow, r.farMeetingsKept, r.farMeetings,
                 r.nearMeetingsKept, r.nearMeetings, r.meetingRounds,
                 r.finalSweepsUndone                 ? "; final sweeps undone"
-                : r.finalSweepsRestored > 0 ? "; final sweeps undone around triangles under the bound"
+                : r.finalSweepsRestored > 0 ? "; final sweeps undone around triangles under the bound or samples past the margin"
                                                     : "");
     if (r.finalSweepsRestored > 0) std::printf("  final sweeps: %d vertices put back\n", r.finalSweepsRestored);
     if (listLeftovers)  // one line per leftover: why it stays (leftover_reasons.h) and what is around it

@@ -184,9 +184,10 @@ FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par
   if (rep.finalSweepsUndone) ctx.Logf("The final local relaxation sweeps overshot the Hausdorff budget or lowered the smallest angle under "
                                       "the bound, and were undone");
   else if (rep.finalSweepsRestored > 0)
-    ctx.Logf("The final local relaxation sweeps pushed triangles under the %.0f degree bound: the %d vertices they "
-             "moved around them were put back where they were before the sweeps",
-             opt.minAngleDeg, rep.finalSweepsRestored);
+    ctx.Logf("The final local relaxation sweeps were kept but for %d vertices, put back where they were before them: "
+             "there the sweeps pushed a triangle under the %.0f degree bound or the surface past 97%% of the Hausdorff "
+             "budget",
+             rep.finalSweepsRestored, opt.minAngleDeg);
   const irr::ShapeMeasures shape = irr::MeasureShape(m);
   LogShape(ctx, "After", m);
   ctx.Logf("Hausdorff distance to the input: %.4f%% of the bounding box diagonal (budget %.3f%%)", rep.hausdorffPercent,

@@ -1401,6 +1401,7 @@ TEST(AutomaticReduction, FinalSweepsBetweenTheMarginAndTheBudgetAreUndoneNotRetr
   ASSERT_TRUE(RemeshedCorpus(m, "dino.off", 3000, &input)) << "corpus mesh missing" << " (run scripts/setup.sh)";
   ReductionOptions opt;
   ASSERT_DOUBLE_EQ(opt.hausdorffBudgetPercent, 0.5);
+  opt.partialSweepUndo = false;  // all of them, as before 0.9.25 (the partial undo: the next test)
   AutomaticReduction<TMesh> ar(m, *input, opt);
   ReductionReport r = ar.Run();
   ASSERT_TRUE(r) << r.result.reason;
@@ -1410,6 +1411,45 @@ TEST(AutomaticReduction, FinalSweepsBetweenTheMarginAndTheBudgetAreUndoneNotRetr
   EXPECT_LE(r.hausdorffPercent, 0.97 * opt.hausdorffBudgetPercent);
   EXPECT_NEAR(r.hausdorffPercent, HausdorffPercent(m, *input), 1e-9);
   Result inv = CheckInvariants(m);
+  EXPECT_TRUE(inv.ok) << inv.reason;
+}
+
+// The same input with the partial undo (sweep_undo.h, SweepUndo::BeyondDistance): the vertices
+// around the samples of the distance measure past the margin are put back where they were
+// before the sweeps, and the rest of the sweeps stay, within the margin and without a retry.
+// Compared vertex by vertex with the same run without sweeps (the positions before them).
+TEST(AutomaticReduction, FinalSweepsPastTheMarginArePutBackAroundTheSamplesNotRetried) {
+  auto run = [](TMesh& m, int sweeps, ReductionReport* rep, double* diag) {
+    std::unique_ptr<SurfaceProjector> input;
+    if (!RemeshedCorpus(m, "dino.off", 3000, &input)) return false;
+    ReductionOptions opt;
+    opt.finalLocalSweeps = sweeps;
+    AutomaticReduction<TMesh> ar(m, *input, opt);
+    *rep = ar.Run();
+    *diag = HausdorffPercent(m, *input);
+    return bool(*rep);
+  };
+  TMesh before, kept;
+  ReductionReport rb, rk;
+  double hb = 0, hk = 0;
+  ASSERT_TRUE(run(before, 0, &rb, &hb)) << "corpus mesh missing (run scripts/setup.sh) or refused: " << rb.result.reason;
+  ASSERT_TRUE(run(kept, 5, &rk, &hk)) << rk.result.reason;
+  EXPECT_EQ(rb.budgetRetries + rk.budgetRetries, 0);
+  EXPECT_FALSE(rk.finalSweepsUndone);
+  EXPECT_GT(rk.finalSweepsRestored, 0);
+  EXPECT_LE(rk.hausdorffPercent, 0.97 * 0.5);
+  EXPECT_NEAR(rk.hausdorffPercent, hk, 1e-9);
+  EXPECT_EQ(rk.irregularAfter, rb.irregularAfter);
+  ASSERT_EQ(test::CanonicalFaces(kept), test::CanonicalFaces(before));
+  int atBefore = 0, moved = 0;
+  for (size_t i = 0; i < kept.vert.size(); ++i) {
+    if (kept.vert[i].IsD()) continue;
+    (kept.vert[i].P() == before.vert[i].P() ? atBefore : moved)++;
+  }
+  EXPECT_GE(atBefore, rk.finalSweepsRestored);  // put back, or never moved (crease vertices)
+  EXPECT_GT(moved, 10 * rk.finalSweepsRestored);
+  EXPECT_GE(MeasureShape(kept).minAngleDeg, std::min(30.0, MeasureShape(before).minAngleDeg) - 1e-9);
+  Result inv = CheckInvariants(kept);
   EXPECT_TRUE(inv.ok) << inv.reason;
 }
 

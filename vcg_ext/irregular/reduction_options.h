@@ -164,8 +164,9 @@ struct ReductionOptions {
   int globalRelaxRounds = 3;            ///< default 3: solve-and-project rounds of the final global relaxation
   int finalLocalSweeps = 5;             ///< default 5: local sweeps over the whole mesh at the end (0: none)
   bool partialSweepUndo = true;         ///< default true (not a filter parameter): when those sweeps push a
-                                        ///< triangle under the angle bound, only the vertices around it are
-                                        ///< put back (round by round, up to 8); false: every vertex is
+                                        ///< triangle under the angle bound or the surface past the verified
+                                        ///< margin of the Hausdorff budget, only the vertices there are put
+                                        ///< back (sweep_undo.h); false: every vertex is
   double anglePolishDeg = 30;           ///< default 30 (not a filter parameter): before the final relaxation, each
                                         ///< triangle with an angle under this is relaxed locally under the guard,
                                         ///< kept if fewer such triangles are left around it (angle_polish.h;
@@ -277,8 +278,9 @@ struct ReductionReport {
   bool finalSweepsUndone = false;  ///< the final local sweeps overshot the Hausdorff budget, or lowered the
                                    ///< smallest angle under the bound, and were undone
   int finalSweepsRestored = 0;     ///< vertices the final sweeps moved that were put back where they were,
-                                   ///< around triangles the sweeps pushed under the angle bound (the
-                                   ///< sweeps kept elsewhere: ReductionOptions::partialSweepUndo)
+                                   ///< around triangles the sweeps pushed under the angle bound and samples
+                                   ///< of the distance measure past the margin (the sweeps kept elsewhere:
+                                   ///< ReductionOptions::partialSweepUndo, sweep_undo.h)
   bool timeLimitReached = false;
   bool interrupted = false;
   double hausdorffPercent = 0;  ///< symmetric distance of the result to the input (HausdorffPercent)
