@@ -108,8 +108,6 @@ class SweepUndo {
         return double(d);
       });
     }
-    std::sort(seeds.begin(), seeds.end());
-    seeds.erase(std::unique(seeds.begin(), seeds.end()), seeds.end());
     return Put(seeds);
   }
 
@@ -118,7 +116,8 @@ class SweepUndo {
     const int k = slot_[size_t(vcg::tri::Index(m_, v))];
     return k < 0 ? v->cP() : before_[size_t(k)];
   }
-  /// Puts back the seeds (sorted, unique) the sweeps moved; the face normals after. How many.
+  /// Puts back the seeds (any order, repeats allowed) the sweeps moved; the face normals after.
+  /// How many.
   int Put(std::vector<int>& seeds) {
     std::sort(seeds.begin(), seeds.end());
     seeds.erase(std::unique(seeds.begin(), seeds.end()), seeds.end());
