@@ -11,7 +11,8 @@
 // (maxRefusalsPerRegion; 0: no bound), partialAbsorption (0/1), reuseDeadSlots (0/1), boundarySlide (0/1),
 // refusedRouteMemo (0/1), farMeetingReach, farMeetingTravel (0: no far meetings), farMeetingRounds,
 // nearMeetingTries (0: no near meetings), nearMeetingTriesPerKept, angleRepairRounds, angleRepairSlack, travelReference (travelReferenceVertices),
-// maxTravelScale, creaseDeg, anglePolish (anglePolishDeg; 0: none), anglePolishRounds, partialSweepUndo (0/1).
+// maxTravelScale, creaseDeg, anglePolish (anglePolishDeg; 0: none), anglePolishRounds, partialSweepUndo (0/1),
+// angleFlips (0/1).
 // files: saveRemeshed=<path> writes the remeshed input (OFF), saveResult=<path> the result, for
 // profiling the reduction alone on a fixed input and for comparing two runs byte by byte (with
 // several models, the model's name is appended).
@@ -134,6 +135,7 @@ int main(int argc, char** argv) {
     else if (key == "boundarySlide") opt.boundarySlide = v != 0;
     else if (key == "refusedRouteMemo") opt.refusedRouteMemo = v != 0;
     else if (key == "partialSweepUndo") opt.partialSweepUndo = v != 0;
+    else if (key == "angleFlips") opt.angleFlips = v != 0;
     else if (key == "creaseDeg") opt.creaseDeg = v;
     else if (key == "anglePolish") opt.anglePolishDeg = v;
     else if (key == "anglePolishRounds") opt.anglePolishRounds = int(v);
@@ -183,8 +185,8 @@ int main(int argc, char** argv) {
           // the vectors' sizes and capacities: a vector that outgrows its room is copied whole
           const HeapMiB h = Heap();
           std::printf("  memory: %-45s %3d%% rss %7.1f MiB, peak %7.1f MiB; heap used %7.1f, freed %6.1f MiB; "
-                      "vert %zu/%zu, face %zu/%zu\n", what, pct, StatusMiB("VmRSS"), StatusMiB("VmHWM"), h.used,
-                      h.freed, m.vert.size(), m.vert.capacity(), m.face.size(), m.face.capacity());
+                      "vert %zu/%zu (%d live), face %zu/%zu\n", what, pct, StatusMiB("VmRSS"), StatusMiB("VmHWM"), h.used,
+                      h.freed, m.vert.size(), m.vert.capacity(), m.vn, m.face.size(), m.face.capacity());
           std::fflush(stdout);
         }
         return true;
@@ -212,15 +214,17 @@ int main(int argc, char** argv) {
                 Summarize(m).eulerCharacteristic, r.irregularBefore, r.irregularAfter, 100.0 * r.irregularAfter / m.vn,
                 HausdorffPercent(m, input), s.minAngleDeg, 100 * s.shareBelow30,
                 std::chrono::duration<double>(t1 - t0).count(), std::chrono::duration<double>(t2 - t1).count(), r.budgetRetries, int(r.gaveUp.size()), r.gaveUpVertices, r.allUndone ? " (all undone)" : "");
-    std::printf("  %s; travel %d; undone %d (angle %d, Hausdorff %d, frozen %d, boundary %d); angle polish %d of %d; "
-                "far meetings %d of %d, near %d of %d in %d rounds%s\n",
+    std::printf("  %s; travel %d; undone %d (angle %d, Hausdorff %d, frozen %d, boundary %d); angle polish %d of %d, flips %d of %d; "
+                "angle repairs kept %d; far meetings %d of %d, near %d of %d in %d rounds%s\n",
                 r.leftovers.Summary().c_str(), r.travel, r.undone, r.undoneAngle, r.undoneHausdorff, r.undoneFrozen,
-                r.undoneBoundary, r.anglePolished, r.anglePolishBelow, r.farMeetingsKept, r.farMeetings,
+                r.undoneBoundary, r.anglePolished, r.anglePolishBelow, r.angleFlips, r.angleFlipsTried, r.angleRepairs, r.farMeetingsKept, r.farMeetings,
                 r.nearMeetingsKept, r.nearMeetings, r.meetingRounds,
                 r.finalSweepsUndone                 ? "; final sweeps undone"
                 : r.finalSweepsRestored > 0 ? "; final sweeps undone around triangles under the bound or samples past the margin"
                                                     : "");
     if (r.finalSweepsRestored > 0) std::printf("  final sweeps: %d vertices put back\n", r.finalSweepsRestored);
+    std::printf("  kept: %d type splits, %d local cancellations, %d transports (%d pair steps), %d glides, %d split-and-absorbs (%d partial)\n",
+                r.typeSplits, r.localCancellations, r.transports, r.pairSteps, r.glides, r.splitAbsorptions, r.partialAbsorptions);
     if (listLeftovers)  // one line per leftover: why it stays (leftover_reasons.h) and what is around it
       for (const LeftoverVertex& lv : r.leftovers.vertices)
         std::printf("  leftover v%d valence %d %s: partner %d at %d edges, nearest irregular %d, curvature %.3f "

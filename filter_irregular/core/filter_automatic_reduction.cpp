@@ -179,6 +179,9 @@ FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par
     ctx.Logf("... and %d more regions given up", int(rep.gaveUp.size() - kMaxGaveUpLines));
   ctx.Logf("Angle polish: %d of the %d triangles with an angle under %.0f degrees relaxed locally within the budget",
            rep.anglePolished, rep.anglePolishBelow, opt.anglePolishDeg);
+  ctx.Logf("Angle flips: %d of %d longest edges of triangles still under %.0f degrees flipped without raising the "
+           "irregular count",
+           rep.angleFlips, rep.angleFlipsTried, opt.anglePolishDeg);
   if (rep.timeLimitReached) ctx.Warnf("Time limit reached: editing stopped early");
   if (rep.globalRelaxUndone) ctx.Logf("The final global relaxation lowered the smallest angle and was undone");
   if (rep.finalSweepsUndone) ctx.Logf("The final local relaxation sweeps overshot the Hausdorff budget or lowered the smallest angle under "
@@ -233,6 +236,8 @@ FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par
   out.SetInt("angle_repairs", rep.angleRepairs);
   out.SetInt("angle_polished", rep.anglePolished);
   out.SetInt("angle_polish_below", rep.anglePolishBelow);
+  out.SetInt("angle_flips", rep.angleFlips);
+  out.SetInt("angle_flips_tried", rep.angleFlipsTried);
   out.SetInt("travel", rep.travel);
   out.SetInt("undone", rep.undone);
   out.SetInt("undone_angle", rep.undoneAngle);

@@ -82,6 +82,7 @@ def test_bunny_example_meets_the_paper_and_beats_the_peer():
     assert 0 <= out["near_meetings_kept"] <= out["near_meetings"]
     assert 1 <= out["meeting_rounds"] <= 3
     assert 0 <= out["angle_polished"] <= out["angle_polish_below"]
+    assert 0 <= out["angle_flips"] <= out["angle_flips_tried"]
     assert 0 < out["reduction_seconds"] <= out["seconds"]
     # the oracle's distance against MeshLab's own sampled one: both sample the surfaces (neither
     # is the exact maximum), so they agree within a few percent, and MeshLab's keeps the budget

@@ -1453,6 +1453,21 @@ TEST(AutomaticReduction, FinalSweepsPastTheMarginArePutBackAroundTheSamplesNotRe
   EXPECT_TRUE(inv.ok) << inv.reason;
 }
 
+namespace {
+/// Live faces with an angle under 30 degrees.
+int Below30(TMesh& m) {
+  int c = 0;
+  for (auto& f : m.face) c += !f.IsD() && EditGuard<TMesh>::MinAngle(&f) < 30;
+  return c;
+}
+/// Every vertex slot's position.
+std::vector<TMesh::CoordType> Positions(TMesh& m) {
+  std::vector<TMesh::CoordType> p;
+  for (auto& v : m.vert) p.push_back(v.P());
+  return p;
+}
+}  // namespace
+
 // The angle polish (angle_polish.h) on a regular torus with six vertices shifted along the tube
 // by 0.55 of a cell: the triangles they shear (under 30 degrees) are relaxed away; only the
 // vertices within three rings of a shifted one move, each shifted vertex ends near its lattice
@@ -1470,19 +1485,13 @@ TEST(ReductionParts, AnglePolishRelaxesShearedTrianglesAwayAndOnlyThere) {
     for (auto& s : shifted) m.vert[size_t(s.first * k + s.second)].P() = place(s.first + 0.55, s.second);
     test::UpdateTopology(m);
   };
-  auto below30 = [](TMesh& m) {
-    int c = 0;
-    for (auto& f : m.face) c += !f.IsD() && EditGuard<TMesh>::MinAngle(&f) < 30;
-    return c;
-  };
   {
     TMesh m;
     build(m);
-    const int before = below30(m);
+    const int before = Below30(m);
     ASSERT_GE(before, 12);  // each shift shears at least two triangles
     const std::vector<std::array<int, 3>> faces = test::CanonicalFaces(m);
-    std::vector<TMesh::CoordType> was;
-    for (auto& v : m.vert) was.push_back(v.P());
+    const std::vector<TMesh::CoordType> was = Positions(m);
     SurfaceProjector input(m);
     ReductionOptions opt;
     Parts p(m, input, opt);
@@ -1491,7 +1500,7 @@ TEST(ReductionParts, AnglePolishRelaxesShearedTrianglesAwayAndOnlyThere) {
     const AnglePolishReport ap = PolishAngles(m, p.guard, rep, 30, 1);
     EXPECT_EQ(ap.below, before);
     EXPECT_GE(ap.kept, int(shifted.size()));
-    EXPECT_EQ(below30(m), 0);
+    EXPECT_EQ(Below30(m), 0);
     EXPECT_EQ(rep.undone + rep.undoneAngle + rep.undoneHausdorff, 0);  // not the reduction's refusals
     EXPECT_TRUE(test::CanonicalFaces(m) == faces);
     EXPECT_TRUE(test::AdjacencyEqualsRebuild(m));
@@ -1527,6 +1536,86 @@ TEST(ReductionParts, AnglePolishRelaxesShearedTrianglesAwayAndOnlyThere) {
     const AnglePolishReport ap = PolishAngles(m, p.guard, rep, 30, 2);
     EXPECT_EQ(ap.kept, 0);
     EXPECT_EQ(ap.refused, ap.below);
+    EXPECT_TRUE(test::Snapshot(m) == snap);
+  }
+}
+
+// The angle flips (angle_flip.h) on a flat hexagonal patch. A flip of the centre's edge to its
+// right neighbour leaves a 5-5-7-7 quadruple whose new edge is the long diagonal of a rhombus;
+// moving one of its ends 0.1 of an edge outwards squeezes the two triangles on it under 30
+// degrees. The pass flips that edge back (4 irregular vertices -> 0), the faces are those of
+// the patch again, the moved end is relaxed back towards its lattice place and nothing away
+// from the quadruple moves. On the patch before the first flip (all regular), or with an end
+// of the diagonal protected, no flip is even tried and the mesh stays as it was.
+TEST(ReductionParts, AngleFlipsOpenSqueezedTrianglesWithoutRaisingTheCount) {
+  auto build = [](TMesh& m, int ends[2], int opposite[2]) {
+    test::HexPatch(m, 6);
+    int right = -1;  // the lattice neighbour (1, 0) of the centre (vertex 0, at the origin)
+    for (size_t i = 0; i < m.vert.size(); ++i)
+      if (vcg::Distance(m.vert[i].P(), TMesh::CoordType(1, 0, 0)) < 1e-4f) right = int(i);
+    ends[0] = 0;
+    ends[1] = right;
+    MeshEditor<TMesh> ed(m);
+    ASSERT_TRUE(ed.Opposites(0, right, opposite));
+  };
+  {
+    TMesh m;
+    int ends[2], o[2];
+    build(m, ends, o);
+    const std::vector<std::array<int, 3>> regular = test::CanonicalFaces(m);
+    MeshEditor<TMesh> ed(m);
+    ASSERT_TRUE(ed.Flip(ends[0], ends[1]));
+    ASSERT_EQ(Recount(m), 4);
+    const TMesh::CoordType lattice = m.vert[size_t(o[0])].P();
+    const TMesh::CoordType out = (m.vert[size_t(o[0])].P() - m.vert[size_t(o[1])].P()).Normalize();
+    m.vert[size_t(o[0])].P() += out * 0.1f;
+    ASSERT_GE(Below30(m), 2);
+    const std::vector<TMesh::CoordType> was = Positions(m);
+    SurfaceProjector input(m);
+    ReductionOptions opt;
+    Parts p(m, input, opt);
+    p.state.StartCount();
+    ASSERT_EQ(p.state.Irregular(), 4);
+    ReductionReport rep;
+    const AngleFlipReport af = FlipSqueezedEdges(m, p.guard, rep, 30);
+    EXPECT_GE(af.below, 2);
+    EXPECT_EQ(af.kept, 1);
+    EXPECT_EQ(Recount(m), 0);
+    EXPECT_EQ(p.state.Irregular(), 0);  // the running count followed the flip
+    EXPECT_EQ(Below30(m), 0);
+    EXPECT_TRUE(test::CanonicalFaces(m) == regular);
+    EXPECT_TRUE(test::AdjacencyEqualsRebuild(m));
+    ASSERT_TRUE(CheckInvariants(m).ok);
+    EXPECT_LT(double(vcg::Distance(m.vert[size_t(o[0])].P(), lattice)), 0.1);
+    const std::vector<int> near = KRing(m, {ends[0], ends[1], o[0], o[1]}, 2);
+    const std::set<int> nearSet(near.begin(), near.end());
+    for (size_t i = 0; i < m.vert.size(); ++i)
+      if (!nearSet.count(int(i))) EXPECT_TRUE(m.vert[i].P() == was[i]) << "vertex " << i << " moved, away from the flip";
+  }
+  for (bool protect : {false, true}) {
+    TMesh m;
+    int ends[2], o[2];
+    build(m, ends, o);
+    MeshEditor<TMesh> ed(m);
+    if (protect) ASSERT_TRUE(ed.Flip(ends[0], ends[1]));
+    // squeeze triangles: around the protected quadruple's diagonal, or (all regular) by moving
+    // the centre's right neighbour 0.6 of an edge towards it
+    if (protect) m.vert[size_t(o[0])].P() += (m.vert[size_t(o[0])].P() - m.vert[size_t(o[1])].P()).Normalize() * 0.3f;
+    else m.vert[size_t(ends[1])].P() *= 0.4f;
+    ASSERT_GE(Below30(m), 2);
+    SurfaceProjector input(m);
+    ReductionOptions opt;
+    if (protect) {
+      opt.frozen.assign(m.vert.size(), 0);
+      opt.frozen[size_t(o[1])] = 1;
+    }
+    Parts p(m, input, opt);
+    p.state.StartCount();
+    const test::MeshSnapshot snap = test::Snapshot(m);
+    ReductionReport rep;
+    const AngleFlipReport af = FlipSqueezedEdges(m, p.guard, rep, 30);
+    EXPECT_GE(af.below, 2);
+    EXPECT_EQ(af.tried, 0) << (protect ? "protected" : "regular");
     EXPECT_TRUE(test::Snapshot(m) == snap);
   }
 }

@@ -37,6 +37,7 @@
 #include <memory>
 #include <vector>
 
+#include "angle_flip.h"
 #include "angle_polish.h"
 #include "composite_ops.h"
 #include "edit_guard.h"
@@ -213,6 +214,11 @@ class AutomaticReduction {
       const AnglePolishReport ap = PolishAngles(m_, guard_, rep, opt_.anglePolishDeg, opt_.anglePolishRounds);
       rep.anglePolished = ap.kept;
       rep.anglePolishBelow = ap.below;
+    }
+    if (opt_.anglePolishDeg > 0 && opt_.angleFlips) {
+      const AngleFlipReport af = FlipSqueezedEdges(m_, guard_, rep, opt_.anglePolishDeg);
+      rep.angleFlips = af.kept;
+      rep.angleFlipsTried = af.tried;
     }
     // the sweeps' stamps and the strategies' per-vertex scratch are not read past this point:
     // give them back before the final relaxation allocates its arrays and the measurement its

@@ -173,6 +173,9 @@ struct ReductionOptions {
                                         ///< issue 14's bound on the share under 30 degrees; 0: none)
   int anglePolishRounds = 1;            ///< default 1 (not a filter parameter): passes of that polish (the cow at
                                         ///< 20K: 57 of 449 kept in one, 61 in two, 62 in four; 0.76% / 0.75% / 0.74%)
+  bool angleFlips = true;               ///< default true (not a filter parameter): after that polish, the longest
+                                        ///< edge of each triangle still under anglePolishDeg is flipped where that
+                                        ///< does not raise the irregular count and the guard passes it (angle_flip.h)
   bool reuseDeadSlots = true;           ///< default true: a split takes the slot of a vertex or face a kept edit
                                         ///< deleted before it appends one (slot_pool.h), so the vectors grow by
                                         ///< what the run adds, not by what it adds and deletes (bunny00 subdivided
@@ -288,6 +291,8 @@ struct ReductionReport {
   int routesRefusedAgain = 0; ///< transport tries refused again from the refused-route memo (refusedRouteMemo)
   int anglePolished = 0;      ///< triangles under anglePolishDeg relaxed by the angle polish and kept
   int anglePolishBelow = 0;   ///< triangles under anglePolishDeg when the polish began
+  int angleFlips = 0;         ///< longest edges of triangles under anglePolishDeg flipped and kept (angleFlips)
+  int angleFlipsTried = 0;    ///< ... flips tried (count-neutral, opening the triangle before relaxation)
   int travel = 0;               ///< the pair travel used: maxTravel, scaled to the mesh (travelReferenceVertices)
   int budgetRetries = 0;        ///< reruns with a tighter per-edit budget after overshooting
   bool allUndone = false;       ///< even the retries overshot: the mesh was given back unchanged
