@@ -12,7 +12,7 @@
 // refusedRouteMemo (0/1), farMeetingReach, farMeetingTravel (0: no far meetings), farMeetingRounds,
 // nearMeetingTries (0: no near meetings), nearMeetingTriesPerKept, angleRepairRounds, angleRepairSlack, travelReference (travelReferenceVertices),
 // maxTravelScale, creaseDeg, anglePolish (anglePolishDeg; 0: none), anglePolishRounds, partialSweepUndo (0/1),
-// angleFlips (0/1).
+// angleFlips (0/1), boundaryRings, boundaryTravel (the boundary stage's rings and maxTravel).
 // files: saveRemeshed=<path> writes the remeshed input (OFF), saveResult=<path> the result, for
 // profiling the reduction alone on a fixed input and for comparing two runs byte by byte (with
 // several models, the model's name is appended).
@@ -133,6 +133,8 @@ int main(int argc, char** argv) {
     else if (key == "partialAbsorption") opt.partialAbsorption = v != 0;
     else if (key == "reuseDeadSlots") opt.reuseDeadSlots = v != 0;
     else if (key == "boundarySlide") opt.boundarySlide = v != 0;
+    else if (key == "boundaryRings") opt.boundary.rings = int(v);
+    else if (key == "boundaryTravel") opt.boundary.maxTravel = int(v);
     else if (key == "refusedRouteMemo") opt.refusedRouteMemo = v != 0;
     else if (key == "partialSweepUndo") opt.partialSweepUndo = v != 0;
     else if (key == "angleFlips") opt.angleFlips = v != 0;
