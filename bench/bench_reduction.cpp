@@ -11,7 +11,7 @@
 // (maxRefusalsPerRegion; 0: no bound), partialAbsorption (0/1), reuseDeadSlots (0/1), boundarySlide (0/1),
 // refusedRouteMemo (0/1), farMeetingReach, farMeetingTravel (0: no far meetings), farMeetingRounds,
 // nearMeetingTries (0: no near meetings), nearMeetingTriesPerKept, angleRepairRounds, angleRepairSlack, travelReference (travelReferenceVertices),
-// maxTravelScale, creaseDeg, anglePolish (anglePolishDeg; 0: none), anglePolishRounds, partialSweepUndo (0/1),
+// maxTravelScale, creaseDeg, creaseStraightShare, anglePolish (anglePolishDeg; 0: none), anglePolishRounds, partialSweepUndo (0/1),
 // angleFlips (0/1), boundaryRings, boundaryTravel (the boundary stage's rings and maxTravel).
 // files: saveRemeshed=<path> writes the remeshed input (OFF), saveResult=<path> the result, for
 // profiling the reduction alone on a fixed input and for comparing two runs byte by byte (with
@@ -139,6 +139,7 @@ int main(int argc, char** argv) {
     else if (key == "partialSweepUndo") opt.partialSweepUndo = v != 0;
     else if (key == "angleFlips") opt.angleFlips = v != 0;
     else if (key == "creaseDeg") opt.creaseDeg = v;
+    else if (key == "creaseStraightShare") opt.creaseStraightShare = v;
     else if (key == "anglePolish") opt.anglePolishDeg = v;
     else if (key == "anglePolishRounds") opt.anglePolishRounds = int(v);
     else if (key == "timeLimit") opt.timeLimitSeconds = v > 0 ? v : opt.timeLimitSeconds;

@@ -1733,6 +1733,10 @@ TEST(AutomaticReduction, FinalSweepsPushNoTriangleUnderTheAngleBound) {
     ReductionOptions opt;
     opt.finalLocalSweeps = sweeps;
     opt.partialSweepUndo = partial;
+    // every set of 8 sharp edges a crease line, as before 0.9.27: with the frayed sets free
+    // (crease_lines.h) the bull at 5K gives another mesh, whose whole sweeps are undone
+    // wholly, and the case (sweeps kept whole but a triangle pushed under the bound) is not shown
+    opt.creaseStraightShare = 0;
     AutomaticReduction<TMesh> ar(m, *input, opt);
     *rep = ar.Run();
     return bool(*rep);

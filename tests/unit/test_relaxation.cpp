@@ -1,6 +1,8 @@
 // Unit tests of vcg_ext/irregular/relaxation.h and quality.h (paper sec. 8).
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cmath>
 #include <random>
 
 #include <vcg_ext/irregular/atomic_ops.h>
@@ -153,7 +155,54 @@ TEST(Relaxation, CreaseLinesAreLongSetsOfSharpEdges) {
   EXPECT_EQ(nNone, 0);
   // two sharp edges alone are not a line of three
   std::vector<std::pair<uint32_t, uint32_t>> e{{0, 1}, {1, 2}, {5, 6}, {6, 7}, {7, 8}};
-  EXPECT_EQ(CreaseLineEdges(e, 10, 3), (std::vector<char>{0, 0, 1, 1, 1}));
+  EXPECT_EQ(CreaseLineEdges(e, 10, 3, [](uint32_t) { return std::array<double, 3>{0, 0, 0}; }, 0), (std::vector<char>{0, 0, 1, 1, 1}));
+}
+
+// A set of sharp edges is a crease line only if it runs as a line (crease_lines.h): a straight
+// chain of 10 edges (its two ends are allowed), a chain that bends by 20 degrees at each vertex
+// and a closed 13-gon (27.7 degrees at each corner) are; a staircase of 10 edges turning 90
+// degrees at each vertex, and a star of 10 spokes, are not; with minStraightShare 0 every set
+// of minEdges edges is, whatever its shape.
+TEST(Relaxation, CreaseLinesRunAsLines) {
+  typedef std::array<double, 3> P;
+  std::vector<P> pts;
+  std::vector<std::pair<uint32_t, uint32_t>> edges;
+  auto chain = [&](const std::vector<P>& q, bool closed) {
+    const uint32_t first = uint32_t(pts.size());
+    for (const P& p : q) pts.push_back(p);
+    for (uint32_t i = 0; i + 1 < q.size(); ++i) edges.push_back({first + i, first + i + 1});
+    if (closed) edges.push_back({first + uint32_t(q.size()) - 1, first});
+  };
+  std::vector<P> straight, bent, polygon, zigzag;
+  double x = 0, y = 0, dir = 0;
+  for (int i = 0; i <= 10; ++i) straight.push_back({double(i), 0, 0});
+  for (int i = 0; i <= 10; ++i, dir += 20 * M_PI / 180) {
+    bent.push_back({x, y + 100, 0});
+    x += std::cos(dir), y += std::sin(dir);
+  }
+  for (int i = 0; i < 13; ++i) polygon.push_back({200 + 5 * std::cos(2 * M_PI * i / 13), 5 * std::sin(2 * M_PI * i / 13), 0});
+  for (int i = 0; i <= 10; ++i) zigzag.push_back({300 + double((i + 1) / 2), double(i / 2), 0});
+  chain(straight, false);                                                         // edges 0..9
+  chain(bent, false);                                                             // 10..19
+  chain(polygon, true);                                                           // 20..32
+  chain(zigzag, false);                                                           // 33..42
+  const uint32_t centre = uint32_t(pts.size());                                   // star: 43..52
+  pts.push_back({400, 0, 0});
+  for (int i = 0; i < 10; ++i) {
+    pts.push_back({400 + std::cos(2 * M_PI * i / 10), std::sin(2 * M_PI * i / 10), 0});
+    edges.push_back({centre, uint32_t(pts.size()) - 1});
+  }
+  auto pos = [&pts](uint32_t i) { return pts[i]; };
+  const std::vector<char> keep = CreaseLineEdges(edges, pts.size(), 8, pos);
+  ASSERT_EQ(keep.size(), size_t(53));
+  for (size_t i = 0; i < 33; ++i) EXPECT_EQ(keep[i], 1) << "edge " << i;
+  for (size_t i = 33; i < 53; ++i) EXPECT_EQ(keep[i], 0) << "edge " << i;
+  const std::vector<char> any = CreaseLineEdges(edges, pts.size(), 8, pos, 0);
+  EXPECT_EQ(any, std::vector<char>(53, 1));
+  // the straight chain alone is too short for 11 edges
+  const std::vector<char> longer = CreaseLineEdges(edges, pts.size(), 11, pos);
+  for (size_t i = 0; i < 20; ++i) EXPECT_EQ(longer[i], 0) << "edge " << i;
+  for (size_t i = 20; i < 33; ++i) EXPECT_EQ(longer[i], 1) << "edge " << i;
 }
 
 TEST(Quality, MeasuresOnEquilateralLattice) {

@@ -63,7 +63,7 @@ class AutomaticReduction {
         original_(original),
         opt_(ScaleToResolution(std::move(opt), m.vn)),
         ed_(m),
-        crease_(CreaseLineVertices(m, opt_.creaseDeg, opt_.creaseMinEdges)),
+        crease_(CreaseLineVertices(m, opt_.creaseDeg, opt_.creaseMinEdges, opt_.creaseStraightShare)),
         inputBoundary_(m),
         comp_(ed_, &original, Quiet(&crease_)),
         state_(m, ed_, opt_),
@@ -493,7 +493,7 @@ class AutomaticReduction {
       if (ed_.IsLive(int(i)) && !state_.Frozen(int(i))) all.push_back(int(i));
     // relaxing the vertices of crease lines would round them (issue 14: creases within 0.1%):
     // they stay, the input's and those of the lines now (vertices edits created on them)
-    std::vector<char> crease = CreaseLineVertices(m_, opt_.creaseDeg, opt_.creaseMinEdges);
+    std::vector<char> crease = CreaseLineVertices(m_, opt_.creaseDeg, opt_.creaseMinEdges, opt_.creaseStraightShare);
     for (size_t i = 0; i < crease_.size() && i < crease.size(); ++i) crease[i] |= crease_[i];
     if (opt_.finalRelax == RelaxMode::Global) {
       const double before = MeasureShape(m_).minAngleDeg;

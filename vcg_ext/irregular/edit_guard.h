@@ -557,7 +557,8 @@ class EditGuard {
     std::vector<vcg::Point3f> samples, normals;
     std::vector<char> onCrease;  // per sample: on a crease line (opt.creaseDeg)
     std::vector<int> source;     // per sample: the input's face it lies on
-    SharpEdgeSamples(original_.Mesh(), opt_.sharpEdgeDeg, opt_.creaseDeg, opt_.creaseMinEdges, samples, normals,
+    SharpEdgeSamples(original_.Mesh(), opt_.sharpEdgeDeg, opt_.creaseDeg, opt_.creaseMinEdges,
+                     opt_.creaseStraightShare, samples, normals,
                      onCrease, &source);
     if (perEdge > 0) ThinnedSurfaceSamples(original_.Mesh(), h / perEdge, samples, normals, &source);
     onCrease.resize(samples.size(), 0);
@@ -595,6 +596,7 @@ class EditGuard {
   /// them, crease_lines.h; none when creaseDeg is 0); source (if given): the face of each.
   /// O(F log F).
   static void SharpEdgeSamples(const SurfaceProjector::PMesh& m, double angleDeg, double creaseDeg, int creaseMinEdges,
+                               double creaseStraightShare,
                                std::vector<vcg::Point3f>& pts, std::vector<vcg::Point3f>& nrm,
                                std::vector<char>& onCrease, std::vector<int>* source = nullptr) {
     // One flat array of half-edges sorted by (edge, face), not a map of vectors: the same
@@ -625,7 +627,8 @@ class EditGuard {
       if (creaseDeg > 0 && j - i == 2 && double(m.face[he[i].f].cN().dot(m.face[he[i + 1].f].cN())) < cc)
         creaseEdges.push_back({he[i].a, he[i].b});
     }
-    const std::vector<char> lineEdge = CreaseLineEdges(creaseEdges, m.vert.size(), creaseMinEdges);
+    const std::vector<char> lineEdge = CreaseLineEdges(
+        creaseEdges, m.vert.size(), creaseMinEdges, [&m](uint32_t i) { return m.vert[i].cP(); }, creaseStraightShare);
     size_t nextCrease = 0;  // creaseEdges is in the order of the loop below
     for (size_t i = 0, j = 0; i < he.size(); i = j) {
       for (j = i + 1; j < he.size() && he[j].a == he[i].a && he[j].b == he[i].b; ++j) {

@@ -255,9 +255,10 @@ std::vector<char> CreaseVertices(MeshType& m, double angleDeg) {
 }
 
 /// 1 for the vertices of crease lines (crease_lines.h): connected sets of at least minEdges
-/// interior edges whose dihedral angle exceeds angleDeg. Needs FF adjacency. O(F + V), once.
+/// interior edges whose dihedral angle exceeds angleDeg, at least minStraightShare of whose
+/// vertices the set passes straight through. Needs FF adjacency. O(F + V), once.
 template <class MeshType>
-std::vector<char> CreaseLineVertices(MeshType& m, double angleDeg, int minEdges) {
+std::vector<char> CreaseLineVertices(MeshType& m, double angleDeg, int minEdges, double minStraightShare = 0.9) {
   std::vector<char> crease(m.vert.size(), 0);
   if (angleDeg <= 0) return crease;
   const double c = std::cos(angleDeg * M_PI / 180.0);
@@ -271,7 +272,8 @@ std::vector<char> CreaseLineVertices(MeshType& m, double angleDeg, int minEdges)
         sharp.push_back({uint32_t(vcg::tri::Index(m, f.V(z))), uint32_t(vcg::tri::Index(m, f.V((z + 1) % 3)))});
     }
   }
-  const std::vector<char> keep = CreaseLineEdges(sharp, m.vert.size(), minEdges);
+  const std::vector<char> keep = CreaseLineEdges(
+      sharp, m.vert.size(), minEdges, [&m](uint32_t i) { return m.vert[i].cP(); }, minStraightShare);
   for (size_t i = 0; i < sharp.size(); ++i)
     if (keep[i]) crease[sharp[i].first] = crease[sharp[i].second] = 1;
   return crease;
