@@ -1,6 +1,7 @@
 // Unit tests of vcg_ext/irregular/relaxation.h and quality.h (paper sec. 8).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <random>
@@ -203,6 +204,25 @@ TEST(Relaxation, CreaseLinesRunAsLines) {
   const std::vector<char> longer = CreaseLineEdges(edges, pts.size(), 11, pos);
   for (size_t i = 0; i < 20; ++i) EXPECT_EQ(longer[i], 0) << "edge " << i;
   for (size_t i = 20; i < 33; ++i) EXPECT_EQ(longer[i], 1) << "edge " << i;
+}
+
+// On real meshes: fandisk's creases run as lines, so the rule keeps every one of its sets; the
+// corpus' femur (3.9K vertices, coarse for its shape) has over a thousand edges sharper than
+// 60 degrees in sets of 8 or more, frayed and branching, and the rule keeps one straight set
+// of 8 (crease_lines.h).
+TEST(Relaxation, CreaseLinesOfAnOrganicModelAreFew) {
+  auto count = [](const std::vector<char>& v) { return int(std::count(v.begin(), v.end(), char(1))); };
+  TMesh fandisk, femur;
+  ASSERT_TRUE(test::LoadCorpus(fandisk, "fandisk.off")) << "corpus mesh missing (run scripts/setup.sh)";
+  ASSERT_TRUE(test::LoadCorpus(femur, "femur.off")) << "corpus mesh missing (run scripts/setup.sh)";
+  const std::vector<char> fandiskAny = CreaseLineVertices(fandisk, 60.0, 8, 0);
+  EXPECT_GT(count(fandiskAny), 600);
+  EXPECT_EQ(CreaseLineVertices(fandisk, 60.0, 8), fandiskAny);
+  const int femurAny = count(CreaseLineVertices(femur, 60.0, 8, 0));
+  const int femurLines = count(CreaseLineVertices(femur, 60.0, 8));
+  EXPECT_GT(femurAny, 900);
+  EXPECT_GE(femurLines, 9);  // the straight set of 8 edges: 9 vertices
+  EXPECT_LE(femurLines, 20);
 }
 
 TEST(Quality, MeasuresOnEquilateralLattice) {
