@@ -34,8 +34,9 @@ namespace irregular {
 /// keep[i] = 1 when sharp edge i (a pair of vertex indices below nVerts) belongs to a crease
 /// line: a connected set of at least minEdges sharp edges whose vertices, but for two (an open
 /// line's ends) or 1 - minStraightShare of them, have exactly two edges of the set, turning by
-/// less than maxTurnDeg (the angle between the directions in and out). pos(i) gives vertex i's position (x, y, z by operator[]);
-/// minStraightShare 0 keeps every set of minEdges, whatever its shape.
+/// less than maxTurnDeg (the angle between the directions in and out). pos(i) gives vertex
+/// i's position (x, y, z by operator[]). minStraightShare 0 keeps every set of minEdges edges,
+/// whatever its shape (the rule before 0.9.27).
 template <class PosFn>
 std::vector<char> CreaseLineEdges(const std::vector<std::pair<uint32_t, uint32_t>>& edges, size_t nVerts, int minEdges,
                                   PosFn pos, double minStraightShare = 0.9, double maxTurnDeg = 30) {
@@ -55,7 +56,8 @@ std::vector<char> CreaseLineEdges(const std::vector<std::pair<uint32_t, uint32_t
   if (minStraightShare > 0) {
     verts.assign(nVerts, 0);
     straight.assign(nVerts, 0);
-    // each vertex's edges of the sets, by sorting their ends: O(E) memory, not O(V)
+    // each vertex's edges of the sets, found by sorting their ends (2E entries) rather than
+    // by a neighbour list per vertex of the mesh
     std::vector<std::pair<uint32_t, uint32_t>> ends;  // (vertex, other end)
     ends.reserve(2 * edges.size());
     for (const auto& e : edges) {

@@ -255,8 +255,9 @@ std::vector<char> CreaseVertices(MeshType& m, double angleDeg) {
 }
 
 /// 1 for the vertices of crease lines (crease_lines.h): connected sets of at least minEdges
-/// interior edges whose dihedral angle exceeds angleDeg, at least minStraightShare of whose
-/// vertices the set passes straight through. Needs FF adjacency. O(F + V), once.
+/// interior edges whose dihedral angle exceeds angleDeg that run as lines (all of a set's
+/// vertices but two, or but 1 - minStraightShare of them, passed straight through; 0: any
+/// set). Needs FF adjacency. O(F + V + E log E) for the E sharp edges, once.
 template <class MeshType>
 std::vector<char> CreaseLineVertices(MeshType& m, double angleDeg, int minEdges, double minStraightShare = 0.9) {
   std::vector<char> crease(m.vert.size(), 0);
