@@ -128,6 +128,7 @@ FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par
   opt.finalRelax = par.Enum("relaxation") == 1 ? irr::RelaxMode::Global : irr::RelaxMode::Local;
   if (par.Float("timeLimit") > 0) opt.timeLimitSeconds = par.Float("timeLimit");  // 0: no limit
   opt.frozen = FrozenFromSelection(m, protect);
+  opt.aggregateLeftovers = par.Bool("aggregate");
   if (cb) opt.progress = [cb](int pct, const char* what) { return cb(pct, what); };
   irr::AutomaticReduction<CMeshO> reduction(m, original, opt);
   irr::ReductionReport rep = reduction.Run();
@@ -182,6 +183,9 @@ FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par
   ctx.Logf("Angle flips: %d of %d longest edges of triangles still under %.0f degrees flipped without raising the "
            "irregular count",
            rep.angleFlips, rep.angleFlipsTried, opt.anglePolishDeg);
+  if (opt.aggregateLeftovers)
+    ctx.Logf("Aggregation: %d pairs of leftover v5 merged into a v4 and %d pairs of v7 into a v8 (%d pairs tried)",
+             rep.aggregatedV4, rep.aggregatedV8, rep.aggregationsTried);
   if (rep.timeLimitReached) ctx.Warnf("Time limit reached: editing stopped early");
   if (rep.globalRelaxUndone) ctx.Logf("The final global relaxation lowered the smallest angle and was undone");
   if (rep.finalSweepsUndone) ctx.Logf("The final local relaxation sweeps overshot the Hausdorff budget or lowered the smallest angle under "
@@ -238,6 +242,9 @@ FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par
   out.SetInt("angle_polish_below", rep.anglePolishBelow);
   out.SetInt("angle_flips", rep.angleFlips);
   out.SetInt("angle_flips_tried", rep.angleFlipsTried);
+  out.SetInt("aggregated_v4", rep.aggregatedV4);
+  out.SetInt("aggregated_v8", rep.aggregatedV8);
+  out.SetInt("aggregations_tried", rep.aggregationsTried);
   out.SetInt("travel", rep.travel);
   out.SetInt("undone", rep.undone);
   out.SetInt("undone_angle", rep.undoneAngle);

@@ -408,6 +408,12 @@ std::vector<FilterSpec> MakeCatalog() {
       Float("timeLimit", 60, 0, 1e7, "Time limit (seconds)",
             "Editing stops after this long; what was done is kept, relaxed and checked against the Hausdorff "
             "budget. 0: no limit (the result then does not depend on the machine's speed)."),
+      Bool("aggregate", false, "Aggregate leftovers into v4/v8",
+           "After the edits, two leftover v5 two edges apart (one regular vertex between them on a common "
+           "neighbour) become one v4, and two v7 facing each other across an edge of two regular vertices become "
+           "one v8 (type aggregation, sec. 6.3), where the minimum angle and the Hausdorff budget still hold. The "
+           "curvature the surface needs stays, in fewer irregular vertices of higher valence. Off: the result keeps "
+           "v5 and v7 only, as the paper's results do (a vertex whose split was refused keeps its valence)."),
       Colorize(),
   };
   f.apply = ApplyAutomaticReduction;

@@ -1788,3 +1788,87 @@ TEST(AutomaticReduction, FinalSweepsPushNoTriangleUnderTheAngleBound) {
   Result inv = CheckInvariants(kept);
   EXPECT_TRUE(inv.ok) << inv.reason;
 }
+
+// Leftover aggregation (leftover_aggregation.h, ReductionOptions::aggregateLeftovers): the two v5
+// (v7) that a type split of a v4 (v8) leaves are in the configuration of sec. 6.3, and the stage
+// merges them back, where they were; a protected member, an adjacent pair or a pair whose
+// vertex between is irregular is not tried, and the mesh stays as it was to the bit.
+TEST(ReductionParts, AggregationMergesTheLeftoverPairsATypeSplitLeavesWhereTheyAre) {
+  for (int k : {4, 8}) {
+    TMesh m;
+    test::BuildCone(m, k);
+    const SurfaceProjector input(m);  // the planar cone: every position stays in its plane
+    std::vector<int> pair;
+    TMesh::CoordType mid;
+    {
+      MeshEditor<TMesh> ed(m);
+      TypeChange<TMesh> tc(ed);
+      TypeSplitRequest req;
+      req.vertex = 0;
+      const TypeChangeOutcome s = tc.TypeSplit(req);
+      ASSERT_TRUE(s) << s.status.reason;
+      pair = s.produced;
+      ASSERT_EQ(pair.size(), 2u);
+      mid = (m.vert[size_t(pair[0])].P() + m.vert[size_t(pair[1])].P()) * 0.5f;
+    }
+    const std::vector<TMesh::CoordType> was = Positions(m);
+    ReductionOptions opt;
+    Parts p(m, input, opt);
+    p.state.StartCount();
+    ASSERT_EQ(p.state.Irregular(), 2);
+    ReductionReport rep;
+    const AggregationReport ag = AggregateLeftovers(m, p.guard, rep);
+    EXPECT_EQ(ag.tried, 1) << "k = " << k;
+    EXPECT_EQ(k == 4 ? ag.v4 : ag.v8, 1) << "k = " << k;
+    EXPECT_EQ(ag.Kept(), 1);
+    EXPECT_EQ(Recount(m), 1);
+    EXPECT_EQ(p.state.Irregular(), 1);  // the running count followed the aggregation
+    int aggregate = -1;
+    MeshEditor<TMesh> ed(m);
+    for (size_t i = 0; i < m.vert.size(); ++i)
+      if (ed.IsLive(int(i)) && !ed.IsBoundary(int(i)) && ed.Valence(int(i)) != 6) aggregate = int(i);
+    ASSERT_GE(aggregate, 0);
+    EXPECT_EQ(ed.Valence(aggregate), k);
+    // where the pair was: within half an edge of its midpoint (the lattice's edges are 1)
+    EXPECT_LT(double(vcg::Distance(m.vert[size_t(aggregate)].P(), mid)), 0.5) << "k = " << k;
+    EXPECT_TRUE(test::AdjacencyEqualsRebuild(m));
+    const Result inv = CheckInvariants(m);
+    EXPECT_TRUE(inv.ok) << inv.reason;
+    // nothing moved beyond the rings the guard relaxes
+    const std::vector<int> near = KRing(m, {aggregate}, 4);
+    const std::set<int> nearSet(near.begin(), near.end());
+    for (size_t i = 0; i < was.size(); ++i)
+      if (!m.vert[i].IsD() && !nearSet.count(int(i)))
+        EXPECT_TRUE(m.vert[i].P() == was[i]) << "vertex " << i << " moved, away from the aggregation";
+  }
+  // not tried: a pair with a protected member; the quadruple of one flip in a regular patch,
+  // whose v5 pairs have only v7 between them and whose v7 are adjacent, facing no edge
+  for (bool flip : {false, true}) {
+    TMesh m;
+    test::BuildCone(m, flip ? 6 : 4);
+    ReductionOptions opt;
+    {
+      MeshEditor<TMesh> ed(m);
+      if (flip) {
+        ASSERT_TRUE(ed.Flip(0, 1));
+      } else {
+        TypeChange<TMesh> tc(ed);
+        TypeSplitRequest req;
+        req.vertex = 0;
+        const TypeChangeOutcome s = tc.TypeSplit(req);
+        ASSERT_TRUE(s) << s.status.reason;
+        opt.frozen.assign(m.vert.size(), 0);
+        opt.frozen[size_t(s.produced[1])] = 1;
+      }
+    }
+    const SurfaceProjector input(m);
+    Parts p(m, input, opt);
+    p.state.StartCount();
+    ASSERT_EQ(p.state.Irregular(), flip ? 4 : 2);
+    const test::MeshSnapshot snap = test::Snapshot(m);
+    ReductionReport rep;
+    const AggregationReport ag = AggregateLeftovers(m, p.guard, rep);
+    EXPECT_EQ(ag.tried, 0) << (flip ? "a flip's quadruple" : "protected");
+    EXPECT_TRUE(test::Snapshot(m) == snap);
+  }
+}

@@ -79,6 +79,50 @@ inline void RegularTorus(TMesh& m, int n, int k, float R = 3.f, float r = 1.f) {
   UpdateTopology(m);
 }
 
+/// ConePatch patch: k sectors of the regular triangular lattice of the given radius glued around
+/// the centre (vertex 0, valence k). Lattice point (a, b) of sector s (a*e_s + b*e_{s+1}) at
+/// distance d = a+b, offset j = b < d, has id 1 + k*d*(d-1)/2 + s*d + j; so the centre's
+/// neighbours, counter-clockwise, are r_s = 1 + s. Every other interior vertex is regular.
+/// Planar: sector s spans the angles [s, s+1) * 360/k degrees.
+struct ConePatch {
+  int k, radius;
+  int Id(int s, int a, int b) const {
+    s = ((s % k) + k) % k;
+    if (a == 0 && b == 0) return 0;
+    const int d = a + b;
+    if (a == 0) return Id(s + 1, b, 0);
+    return 1 + k * d * (d - 1) / 2 + s * d + b;
+  }
+  int Ring(int s) const { return Id(s, 1, 0); }
+};
+
+inline ConePatch BuildCone(TMesh& m, int k, int radius = 6) {
+  ConePatch c{k, radius};
+  m.Clear();
+  const int n = 1 + k * radius * (radius + 1) / 2;
+  vcg::tri::Allocator<TMesh>::AddVertices(m, size_t(n));
+  m.vert[0].P() = TMesh::CoordType(0, 0, 0);
+  for (int s = 0; s < k; ++s)
+    for (int d = 1; d <= radius; ++d)
+      for (int b = 0; b < d; ++b) {
+        const int a = d - b;
+        const float x = a + 0.5f * b, y = b * std::sqrt(3.f) / 2, rho = std::sqrt(x * x + y * y);
+        const float phi = (float(s) + std::atan2(y, x) / float(M_PI / 3)) * 2 * float(M_PI) / float(k);
+        m.vert[size_t(c.Id(s, a, b))].P() = TMesh::CoordType(rho * std::cos(phi), rho * std::sin(phi), 0);
+      }
+  for (int s = 0; s < k; ++s)
+    for (int a = 0; a < radius; ++a)
+      for (int b = 0; a + b < radius; ++b) {
+        vcg::tri::Allocator<TMesh>::AddFace(m, &m.vert[size_t(c.Id(s, a, b))], &m.vert[size_t(c.Id(s, a + 1, b))],
+                                            &m.vert[size_t(c.Id(s, a, b + 1))]);
+        if (a + b < radius - 1)
+          vcg::tri::Allocator<TMesh>::AddFace(m, &m.vert[size_t(c.Id(s, a + 1, b))],
+                                              &m.vert[size_t(c.Id(s, a + 1, b + 1))], &m.vert[size_t(c.Id(s, a, b + 1))]);
+      }
+  test::UpdateTopology(m);
+  return c;
+}
+
 /// Planar patch of a regular triangular lattice: a hexagon of the given radius (in edges)
 /// around the origin. Interior vertices have valence 6; the centre is vertex 0.
 inline void HexPatch(TMesh& m, int radius) {

@@ -41,6 +41,7 @@
 #include "angle_polish.h"
 #include "composite_ops.h"
 #include "edit_guard.h"
+#include "leftover_aggregation.h"
 #include "local_cancellation.h"
 #include "pair_transport.h"
 #include "quality.h"
@@ -204,6 +205,14 @@ class AutomaticReduction {
     }
     if (go && !state_.Done()) go = Meetings(rep);
     if (rep.interrupted) return;
+    // Opt-in: what curvature or a thin part keeps, in fewer vertices (leftover_aggregation.h).
+    // Before the polish and flips, which then work on the aggregates' triangles too.
+    if (go && opt_.aggregateLeftovers && !state_.Done()) {
+      const AggregationReport ag = AggregateLeftovers(m_, guard_, rep);
+      rep.aggregatedV4 = ag.v4;
+      rep.aggregatedV8 = ag.v8;
+      rep.aggregationsTried = ag.tried;
+    }
     // A stage after the sweeps (e.g. on the boundary) goes here: it runs even when the time
     // limit stopped the editing only if it is cheap; the final relaxation always does.
     if (opt_.progress && !opt_.progress(90, "Relaxing")) {

@@ -73,6 +73,7 @@ class EditGuard {
   /// witnesses would (the tests compare the two verdicts).
   void ForgetWitnesses() { std::fill(sampleWitness_.begin(), sampleWitness_.end(), -1); }
   Editor& ed() { return ed_; }
+  const ReductionOptions& options() const { return opt_; }
   ReductionState<MeshType>& state() { return state_; }
 
   /// The verdict on an edit that touched `touched`, given the smallest angle around it before.

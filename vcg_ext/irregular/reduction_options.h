@@ -183,6 +183,11 @@ struct ReductionOptions {
   bool angleFlips = true;               ///< default true (not a filter parameter): after that polish, the longest
                                         ///< edge of each triangle still under anglePolishDeg is flipped where that
                                         ///< does not raise the irregular count and the guard passes it (angle_flip.h)
+  bool aggregateLeftovers = false;      ///< default false (the filter's "aggregate"): after the sweeps and
+                                        ///< meetings, two leftover v5 two edges apart become one v4 and two v7
+                                        ///< across an edge one v8 (type aggregation, sec. 6.3), where the guard
+                                        ///< passes it (leftover_aggregation.h): fewer irregular vertices, of higher
+                                        ///< charge; false keeps v5 and v7 only, as the paper's results do
   bool reuseDeadSlots = true;           ///< default true: a split takes the slot of a vertex or face a kept edit
                                         ///< deleted before it appends one (slot_pool.h), so the vectors grow by
                                         ///< what the run adds, not by what it adds and deletes (bunny00 subdivided
@@ -300,6 +305,9 @@ struct ReductionReport {
   int anglePolishBelow = 0;   ///< triangles under anglePolishDeg when the polish began
   int angleFlips = 0;         ///< longest edges of triangles under anglePolishDeg flipped and kept (angleFlips)
   int angleFlipsTried = 0;    ///< ... flips tried (count-neutral, opening the triangle before relaxation)
+  int aggregatedV4 = 0;       ///< leftover v5 pairs merged into a v4 (aggregateLeftovers)
+  int aggregatedV8 = 0;       ///< leftover v7 pairs merged into a v8 (aggregateLeftovers)
+  int aggregationsTried = 0;  ///< ... pairs tried under the guard
   int travel = 0;               ///< the pair travel used: maxTravel, scaled to the mesh (travelReferenceVertices)
   int budgetRetries = 0;        ///< reruns with a tighter per-edit budget after overshooting
   bool allUndone = false;       ///< even the retries overshot: the mesh was given back unchanged
