@@ -373,7 +373,8 @@ std::vector<FilterSpec> MakeCatalog() {
       "is bounded: around an irregular vertex where 20 edits (or maxTravel, if larger) were refused (typically a thin "
       "part), the run gives up, "
       "logs one line saying where and why, and tries there again only after an edit nearby was kept. "
-      "Optionally remeshes isotropically first. Deterministic. Logs and returns counts by valence, edits, triangle "
+      "Optionally remeshes isotropically first, and merges leftover pairs into v4 and v8 at the end (Aggregate "
+      "leftovers). Deterministic. Logs and returns counts by valence, edits, triangle "
       "quality, Hausdorff distance and time.";
   f.params = {
       Percentage("remeshEdgeLength", 0, "Remesh first: target edge length",

@@ -249,7 +249,7 @@ def test_aggregation_merges_leftover_pairs_where_they_were():
     """'Aggregate leftovers into v4/v8' (aggregate, default off) on the elephant (raw, 2775
     vertices): the run is the default one up to its last stage, which merges two leftover v5
     into a v4 and two v7 into a v8 (sec. 6.3) where the guard passes it. Measured: 167 interior
-    irregular vertices left without, 151 with (9 v4 and 7 v8 of 39 pairs tried). Each new v4
+    irregular vertices left without, 150 with (10 v4 and 7 v8 of 47 pairs tried). Each new v4
     (v8) lies where the default run left two v5 (v7) next to each other, and the curvature
     they stand for is kept (genus 3: the sum of 6 - valence stays -24)."""
     runs = {}

@@ -768,6 +768,9 @@ class GuardedEdit {
   /// The edit is kept: stamps, running count, and (outermost edit) the journal's commit.
   void Keep(const std::vector<int>& touched) { g_.state().Kept(touched); }
   void Undo() { g_.ed().RollbackTo(cp_); }
+  /// The smallest angle around the edit before it began (the guard's bound where it is under
+  /// the minimum angle).
+  double AngleBefore() const { return angleBefore_; }
 
  private:
   EditGuard<MeshType>& g_;
