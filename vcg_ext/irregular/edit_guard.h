@@ -771,6 +771,35 @@ class GuardedEdit {
   /// The smallest angle around the edit before it began (the guard's bound where it is under
   /// the minimum angle).
   double AngleBefore() const { return angleBefore_; }
+  /// Angle repair, for an edit the guard refused for triangles under the minimum angle (a
+  /// transport's route, pair_transport.h; an aggregation, leftover_aggregation.h): relax again
+  /// around its sharp corners (their 2-ring), up to `rounds` times, while the smallest angle
+  /// is at most `slack` under `bound` and has risen in one of the last two rounds (a repair that
+  /// works lifts it round after round; one that does not often lowers it). The relaxed vertices
+  /// join `touched`. clearMinimum: a Kept verdict still needs every judged angle at the minimum
+  /// itself (crease faces keep their slack), not only "no worse than before". Returns the last
+  /// verdict (Angle if no round was tried). Undoes nothing: the caller keeps or undoes.
+  GuardVerdict RepairAngles(std::vector<int>& touched, int rounds, double bound, double slack, bool clearMinimum) {
+    const double minimum = g_.options().minAngleDeg;
+    GuardVerdict verdict = GuardVerdict::Angle;
+    std::vector<int> sharp;
+    double last = -1;  // the smallest angle before the previous round
+    int stalled = 0;   // rounds in a row that did not raise it
+    for (int r = 0; r < rounds && verdict == GuardVerdict::Angle; ++r) {
+      const double now = g_.MinAngleAndSharpCorners(touched, minimum, &sharp);
+      if (now < bound - slack) break;
+      stalled = r > 0 && now <= last ? stalled + 1 : 0;
+      if (stalled == 2) break;
+      last = now;
+      g_.RelaxAround(sharp);
+      touched.insert(touched.end(), sharp.begin(), sharp.end());
+      verdict = Verdict(touched);
+      double atCrease = 180;
+      if (clearMinimum && verdict == GuardVerdict::Kept && g_.MinAngleOfJudged(&atCrease) < minimum)
+        verdict = GuardVerdict::Angle;
+    }
+    return verdict;
+  }
 
  private:
   EditGuard<MeshType>& g_;

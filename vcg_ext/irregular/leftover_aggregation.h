@@ -121,12 +121,12 @@ AggregationReport AggregateLeftovers(MeshType& m, EditGuard<MeshType>& guard, Re
       req.group = {a, b};
       req.at = partner.second;
       if (!tc.PredictAggregation(req)) continue;
-      std::vector<int> seeds{a, b};
+      const std::vector<int> around = KRing(m, {a, b}, 1);
       // a region that already had a turned-over triangle (slivers on thin parts, as in
       // angle_flip.h) is judged by the rest: refused only for turning one over itself
-      const bool foldedBefore = guard.FoldsAround(KRing(m, seeds, 1));
+      const bool foldedBefore = guard.FoldsAround(around);
       ++out.tried;
-      GuardedEdit<MeshType> g(guard, rep, KRing(m, seeds, 1), &none);
+      GuardedEdit<MeshType> g(guard, rep, around, &none);
       const TypeChangeOutcome o = tc.Aggregate(req);
       if (!o) {
         g.Undo();
@@ -137,23 +137,13 @@ AggregationReport AggregateLeftovers(MeshType& m, EditGuard<MeshType>& guard, Re
       touched.insert(touched.end(), o.created.begin(), o.created.end());
       guard.RelaxAround(touched);
       GuardVerdict verdict = g.Verdict(touched);
-      // a triangle left under the minimum angle: relax around the sharp corners again (as a
-      // transport's angle repair, pair_transport.h), a few rounds, while the smallest angle
-      // is within angleRepairSlackDeg of the guard's bound and rises at least every other round
-      const double bound = std::min(guard.options().minAngleDeg, g.AngleBefore());
-      std::vector<int> sharp;
-      double last = -1;
-      for (int r = 0, stalled = 0; r < kAggregationRepairRounds && verdict == GuardVerdict::Angle; ++r) {
-        const double now = guard.MinAngleAndSharpCorners(touched, guard.options().minAngleDeg, &sharp);
-        if (now < bound - guard.options().angleRepairSlackDeg) break;
-        stalled = r > 0 && now <= last ? stalled + 1 : 0;
-        if (stalled == 2) break;
-        last = now;
-        guard.RelaxAround(sharp);
-        touched.insert(touched.end(), sharp.begin(), sharp.end());
-        verdict = g.Verdict(touched);
-      }
-      if ((foldedBefore || !guard.FoldsAround(touched)) && state.CountChange(touched) < 0 && verdict == GuardVerdict::Kept) {
+      // a triangle left under the minimum angle: relax around the sharp corners again, as a
+      // transport's route is (GuardedEdit::RepairAngles), judged against the guard's own bound
+      if (verdict == GuardVerdict::Angle)
+        verdict = g.RepairAngles(touched, kAggregationRepairRounds, std::min(guard.options().minAngleDeg, g.AngleBefore()),
+                                 guard.options().angleRepairSlackDeg, false);
+      if ((foldedBefore || !guard.FoldsAround(touched)) && state.CountChange(touched) < 0 &&
+          verdict == GuardVerdict::Kept) {
         g.Keep(touched);
         ++(valence == 5 ? out.v4 : out.v8);
         break;  // a is aggregated

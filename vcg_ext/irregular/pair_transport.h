@@ -392,24 +392,7 @@ class PairTransport {
   /// the 103, and left fandisk 186 irregular vertices instead of 175.
   /// Returns the last verdict (Angle if no round was tried).
   GuardVerdict RepairAngles(GuardedEdit<MeshType>& g, std::vector<int>& touched) {
-    GuardVerdict verdict = GuardVerdict::Angle;
-    std::vector<int> sharp;
-    double last = -1;  // the smallest angle before the previous round
-    int stalled = 0;   // rounds in a row that did not raise it
-    for (int r = 0; r < opt_.angleRepairRounds && verdict == GuardVerdict::Angle; ++r) {
-      const double now = guard_.MinAngleAndSharpCorners(touched, opt_.minAngleDeg, &sharp);
-      if (now < opt_.minAngleDeg - opt_.angleRepairSlackDeg) break;
-      stalled = r > 0 && now <= last ? stalled + 1 : 0;
-      if (stalled == 2) break;
-      last = now;
-      guard_.RelaxAround(sharp);
-      touched.insert(touched.end(), sharp.begin(), sharp.end());
-      verdict = g.Verdict(touched);
-      double atCrease = 180;
-      if (verdict == GuardVerdict::Kept && guard_.MinAngleOfJudged(&atCrease) < opt_.minAngleDeg)
-        verdict = GuardVerdict::Angle;
-    }
-    return verdict;
+    return g.RepairAngles(touched, opt_.angleRepairRounds, opt_.minAngleDeg, opt_.angleRepairSlackDeg, true);
   }
 
   /// Steps the pair (a, b) with `step` until a removal (sec. 6.2) applies next to it; when no
