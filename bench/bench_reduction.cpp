@@ -140,6 +140,7 @@ int main(int argc, char** argv) {
     else if (key == "angleFlips") opt.angleFlips = v != 0;
     else if (key == "aggregate") opt.aggregateLeftovers = v != 0;
     else if (key == "creaseDeg") opt.creaseDeg = v;
+    else if (key == "creaseThinEdges") opt.creaseThinEdges = v;
     else if (key == "creaseStraightShare") opt.creaseStraightShare = v;
     else if (key == "anglePolish") opt.anglePolishDeg = v;
     else if (key == "anglePolishRounds") opt.anglePolishRounds = int(v);
@@ -227,6 +228,7 @@ int main(int argc, char** argv) {
                 : r.finalSweepsRestored > 0 ? "; final sweeps undone around triangles under the bound or samples past the margin"
                                                     : "");
     if (r.finalSweepsRestored > 0) std::printf("  final sweeps: %d vertices put back\n", r.finalSweepsRestored);
+    if (r.thinRimLines > 0) std::printf("  crease lines not kept sharp as thin parts' rims: %d\n", r.thinRimLines);
     if (opt.aggregateLeftovers)
       std::printf("  aggregated: %d v4 and %d v8 of %d pairs tried\n", r.aggregatedV4, r.aggregatedV8, r.aggregationsTried);
     std::printf("  kept: %d type splits, %d local cancellations, %d transports (%d pair steps), %d glides, %d split-and-absorbs (%d partial)\n",

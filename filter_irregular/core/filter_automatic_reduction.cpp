@@ -186,6 +186,10 @@ FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par
   if (opt.aggregateLeftovers)
     ctx.Logf("Aggregation: %d pairs of leftover v5 merged into a v4 and %d pairs of v7 into a v8 (%d pairs tried)",
              rep.aggregatedV4, rep.aggregatedV8, rep.aggregationsTried);
+  if (rep.thinRimLines > 0)
+    ctx.Logf("Crease lines: %d rims of parts thinner than %.0f edge lengths were not kept sharp (the thin part keeps "
+             "its shape within the Hausdorff budget)",
+             rep.thinRimLines, opt.creaseThinEdges);
   if (rep.timeLimitReached) ctx.Warnf("Time limit reached: editing stopped early");
   if (rep.globalRelaxUndone) ctx.Logf("The final global relaxation lowered the smallest angle and was undone");
   if (rep.finalSweepsUndone) ctx.Logf("The final local relaxation sweeps overshot the Hausdorff budget or lowered the smallest angle under "
@@ -245,6 +249,7 @@ FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par
   out.SetInt("aggregated_v4", rep.aggregatedV4);
   out.SetInt("aggregated_v8", rep.aggregatedV8);
   out.SetInt("aggregations_tried", rep.aggregationsTried);
+  out.SetInt("thin_rim_lines", rep.thinRimLines);
   out.SetInt("travel", rep.travel);
   out.SetInt("undone", rep.undone);
   out.SetInt("undone_angle", rep.undoneAngle);

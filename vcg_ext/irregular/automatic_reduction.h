@@ -48,6 +48,7 @@
 #include "reduction_options.h"
 #include "reduction_state.h"
 #include "sweep_undo.h"
+#include "thin_creases.h"
 
 namespace vcg_ext {
 namespace irregular {
@@ -64,11 +65,12 @@ class AutomaticReduction {
         original_(original),
         opt_(ScaleToResolution(std::move(opt), m.vn)),
         ed_(m),
-        crease_(CreaseLineVertices(m, opt_.creaseDeg, opt_.creaseMinEdges, opt_.creaseStraightShare)),
+        dropThinRims_(opt_.creaseThinEdges > 0 && IsTheInput(m, original)),
+        crease_(ProtectedCreases(m, opt_, dropThinRims_, &thinRimLines_)),
         inputBoundary_(m),
         comp_(ed_, &original, Quiet(&crease_)),
         state_(m, ed_, opt_),
-        guard_(m, original, opt_, ed_, state_, &crease_),
+        guard_(m, original, opt_, ed_, state_, &crease_, dropThinRims_ ? &crease_ : nullptr),
         cancel_(m, ed_, comp_, guard_, state_),
         transport_(m, opt_, ed_, comp_.atomic(), guard_, state_, cancel_) {
     // The run reports counts and reasons of its own, never an atomic operation's text.
@@ -143,6 +145,7 @@ class AutomaticReduction {
     rep.finalSweepsUndone = !sweepsKept_;
     rep.finalSweepsRestored = sweepsRestored_;
     rep.seconds = Elapsed();
+    rep.thinRimLines = thinRimLines_;
     rep.result = Result::Ok();
     return rep;
   }
@@ -383,6 +386,33 @@ class AutomaticReduction {
     return transport_.Isolated(v) && transport_.SplitAndAbsorb(rep, v, radius, innerTravel);
   }
 
+  /// The vertices of the crease lines that stay sharp: those of the mesh as it is
+  /// (CreaseLineVertices), but for a thin part's rims if dropThinRims (thin_creases.h;
+  /// *dropped: how many lines were).
+  static std::vector<char> ProtectedCreases(MeshType& m, const ReductionOptions& o, bool dropThinRims,
+                                            int* dropped = nullptr) {
+    std::vector<char> crease = CreaseLineVertices(m, o.creaseDeg, o.creaseMinEdges, o.creaseStraightShare);
+    const int n = dropThinRims ? DropThinCreaseLines(m, crease, o.creaseThinEdges) : 0;
+    if (dropped) *dropped = n;
+    return crease;
+  }
+
+  /// Is m the input surface itself, vertex for vertex (live vertices in order, same positions)?
+  /// Then the edit guard can take the crease lines the reduction keeps sharp from m's flags
+  /// (EditGuard's inputCrease); a remeshed input is not: its thin rims stay protected, so the
+  /// guard's crease samples and the relaxation's fixed vertices keep agreeing. O(V), once.
+  static bool IsTheInput(const MeshType& m, const SurfaceProjector& original) {
+    const auto& p = original.Mesh().vert;
+    if (size_t(m.vn) != p.size() || m.vert.size() != p.size()) return false;
+    size_t k = 0;
+    for (auto& v : m.vert) {
+      if (v.IsD()) continue;
+      if (k >= p.size() || vcg::Point3f::Construct(v.cP()) != p[k].cP()) return false;
+      ++k;
+    }
+    return k == p.size();
+  }
+
   static CompositeOptions Quiet(const std::vector<char>* crease) {
     CompositeOptions o;
     o.relax = true;
@@ -502,7 +532,7 @@ class AutomaticReduction {
       if (ed_.IsLive(int(i)) && !state_.Frozen(int(i))) all.push_back(int(i));
     // relaxing the vertices of crease lines would round them (issue 14: creases within 0.1%):
     // they stay, the input's and those of the lines now (vertices edits created on them)
-    std::vector<char> crease = CreaseLineVertices(m_, opt_.creaseDeg, opt_.creaseMinEdges, opt_.creaseStraightShare);
+    std::vector<char> crease = ProtectedCreases(m_, opt_, dropThinRims_);
     for (size_t i = 0; i < crease_.size() && i < crease.size(); ++i) crease[i] |= crease_[i];
     if (opt_.finalRelax == RelaxMode::Global) {
       const double before = MeasureShape(m_).minAngleDeg;
@@ -568,8 +598,12 @@ class AutomaticReduction {
   const SurfaceProjector& original_;
   ReductionOptions opt_;
   Editor ed_;
-  /// Per vertex index of the input, 1 on a crease line (opt.creaseDeg, opt.creaseMinEdges): no
-  /// relaxation moves these, so creases stay sharp (issue 14). Vertices created later are free
+  /// Does the run leave a thin part's rims unprotected (opt.creaseThinEdges, thin_creases.h)?
+  /// Only when the mesh is the input itself (IsTheInput); thinRimLines_: how many it left.
+  bool dropThinRims_;
+  int thinRimLines_ = 0;
+  /// Per vertex index of the input, 1 on a crease line (opt.creaseDeg, opt.creaseMinEdges; not
+  /// a thin part's rim, with dropThinRims_): no relaxation moves these, so creases stay sharp (issue 14). Vertices created later are free
   /// (the guard's crease check undoes an edit that cuts a crease); indices are stable during a
   /// run (nothing is compacted until its end).
   std::vector<char> crease_;

@@ -49,10 +49,14 @@ class EditGuard {
   /// hausdorffSamplesPerEdge points per edge elsewhere): between samples the true distance can
   /// be higher, so a tenth of the budget is kept back; the driver measures the result and
   /// redoes the run if it still overshoots (Tighten).
-  /// crease: per vertex index, 1 = never moved by RelaxAround (null: none); outlives the guard.
+  /// crease: per vertex index, 1 = never moved by RelaxAround (null: none). inputCrease: per
+  /// vertex index of the input (the projector's mesh), 1 on the crease lines the run keeps sharp;
+  /// only those lines' samples get the crease budget (null: every crease line's, by the rule of
+  /// crease_lines.h). Both outlive the guard.
   EditGuard(MeshType& m, const SurfaceProjector& original, const ReductionOptions& opt, Editor& ed,
-            ReductionState<MeshType>& state, const std::vector<char>* crease = nullptr)
-      : m_(m), original_(original), opt_(opt), ed_(ed), state_(state), crease_(crease) {
+            ReductionState<MeshType>& state, const std::vector<char>* crease = nullptr,
+            const std::vector<char>* inputCrease = nullptr)
+      : m_(m), original_(original), opt_(opt), ed_(ed), state_(state), crease_(crease), inputCrease_(inputCrease) {
     budget_ = 0.9 * opt_.hausdorffBudgetPercent / 100.0 * double(original.Diagonal());
     creaseBudget_ = opt_.creaseBudgetPercent / 100.0 * double(original.Diagonal());
     BuildInputSamples(samplesPerEdge_ = opt_.hausdorffSamplesPerEdge);
@@ -560,7 +564,7 @@ class EditGuard {
     std::vector<int> source;     // per sample: the input's face it lies on
     SharpEdgeSamples(original_.Mesh(), opt_.sharpEdgeDeg, opt_.creaseDeg, opt_.creaseMinEdges,
                      opt_.creaseStraightShare, samples, normals,
-                     onCrease, &source);
+                     onCrease, &source, inputCrease_);
     if (perEdge > 0) ThinnedSurfaceSamples(original_.Mesh(), h / perEdge, samples, normals, &source);
     onCrease.resize(samples.size(), 0);
     // a sample is a point and a face's normal: the points repeat (a vertex once per sharp edge
@@ -594,12 +598,13 @@ class EditGuard {
   /// Ends and midpoints of the edges of m whose dihedral angle exceeds angleDeg, with the
   /// normal of each face along the edge; onCrease[i]: sample i lies on a crease line (an
   /// interior edge sharper than creaseDeg, in a connected set of at least creaseMinEdges of
-  /// them, crease_lines.h; none when creaseDeg is 0); source (if given): the face of each.
-  /// O(F log F).
+  /// them, crease_lines.h; none when creaseDeg is 0; with protectedVertex, only an edge whose
+  /// two ends it flags); source (if given): the face of each. O(F log F).
   static void SharpEdgeSamples(const SurfaceProjector::PMesh& m, double angleDeg, double creaseDeg, int creaseMinEdges,
                                double creaseStraightShare,
                                std::vector<vcg::Point3f>& pts, std::vector<vcg::Point3f>& nrm,
-                               std::vector<char>& onCrease, std::vector<int>* source = nullptr) {
+                               std::vector<char>& onCrease, std::vector<int>* source = nullptr,
+                               const std::vector<char>* protectedVertex = nullptr) {
     // One flat array of half-edges sorted by (edge, face), not a map of vectors: the same
     // samples in the same order (the map's pointer keys ordered the vertices by index), and
     // 12 bytes per half-edge instead of a node and a vector per edge (at 1.2M faces the map
@@ -637,7 +642,9 @@ class EditGuard {
       // boundary and non-manifold edges are features too
       const double dot = j - i != 2 ? 1.0 : double(m.face[he[i].f].cN().dot(m.face[he[i + 1].f].cN()));
       const bool sharpCrease = creaseDeg > 0 && j - i == 2 && dot < cc;
-      const bool crease = sharpCrease && lineEdge[nextCrease++];
+      const bool crease = sharpCrease && lineEdge[nextCrease++] &&
+                          (!protectedVertex || (he[i].b < protectedVertex->size() && (*protectedVertex)[he[i].a] &&
+                                                  (*protectedVertex)[he[i].b]));
       const bool sharp = j - i != 2 || dot < c;
       if (!sharp) continue;
       const auto& a = m.vert[he[i].a];
@@ -685,6 +692,7 @@ class EditGuard {
   Editor& ed_;
   ReductionState<MeshType>& state_;
   const std::vector<char>* crease_;  ///< vertices RelaxAround never moves (the input's crease lines)
+  const std::vector<char>* inputCrease_;  ///< the input's crease lines kept sharp, by its vertex index (null: all)
   double budget_ = 0;           ///< per-edit Hausdorff budget (absolute), tightened by retries
   double creaseBudget_ = 0;     ///< per-edit budget of the crease samples (absolute)
   double samplesPerEdge_ = 0;   ///< input samples per edge length besides sharp edges, raised by retries

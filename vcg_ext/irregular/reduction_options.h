@@ -79,6 +79,9 @@ struct ReductionOptions {
                                         ///< 61-degree crease at 57-58 degrees), but also ridges of organic models:
                                         ///< at 55 the triceratops kept 220 irregular vertices instead of 174, at 45
                                         ///< the elephant 185 instead of 130
+  double creaseThinEdges = 4;           ///< default 4 (not a filter parameter): a crease line that is the rim of a
+                                        ///< part thinner than this many mean edge lengths (thin_creases.h) is not
+                                        ///< kept sharp; 0: every crease line is (before 0.9.29)
   int creaseMinEdges = 8;               ///< default 8 (not a filter parameter): fewer sharp edges together are a
                                         ///< coarse spot (an ear tip), not a crease
   double creaseStraightShare = 0.9;     ///< default 0.9 (not a filter parameter): ... and a set is a crease line
@@ -308,6 +311,7 @@ struct ReductionReport {
   int aggregatedV4 = 0;       ///< leftover v5 pairs merged into a v4 (aggregateLeftovers)
   int aggregatedV8 = 0;       ///< leftover v7 pairs merged into a v8 (aggregateLeftovers)
   int aggregationsTried = 0;  ///< ... pairs tried under the guard
+  int thinRimLines = 0;       ///< crease lines left unprotected as a thin part's rims (creaseThinEdges)
   int travel = 0;               ///< the pair travel used: maxTravel, scaled to the mesh (travelReferenceVertices)
   int budgetRetries = 0;        ///< reruns with a tighter per-edit budget after overshooting
   bool allUndone = false;       ///< even the retries overshot: the mesh was given back unchanged
