@@ -65,12 +65,11 @@ class AutomaticReduction {
         original_(original),
         opt_(ScaleToResolution(std::move(opt), m.vn)),
         ed_(m),
-        dropThinRims_(opt_.creaseThinEdges > 0 && IsTheInput(m, original)),
-        crease_(ProtectedCreases(m, opt_, dropThinRims_, &thinRimLines_)),
+        crease_(ProtectedCreases(m, opt_, &original, &inputCrease_, &thinRimLines_)),
         inputBoundary_(m),
         comp_(ed_, &original, Quiet(&crease_)),
         state_(m, ed_, opt_),
-        guard_(m, original, opt_, ed_, state_, &crease_, dropThinRims_ ? &crease_ : nullptr),
+        guard_(m, original, opt_, ed_, state_, &crease_, &inputCrease_),
         cancel_(m, ed_, comp_, guard_, state_),
         transport_(m, opt_, ed_, comp_.atomic(), guard_, state_, cancel_) {
     // The run reports counts and reasons of its own, never an atomic operation's text.
@@ -386,31 +385,28 @@ class AutomaticReduction {
     return transport_.Isolated(v) && transport_.SplitAndAbsorb(rep, v, radius, innerTravel);
   }
 
-  /// The vertices of the crease lines that stay sharp: those of the mesh as it is
-  /// (CreaseLineVertices), but for a thin part's rims if dropThinRims (thin_creases.h;
-  /// *dropped: how many lines were).
-  static std::vector<char> ProtectedCreases(MeshType& m, const ReductionOptions& o, bool dropThinRims,
-                                            int* dropped = nullptr) {
-    std::vector<char> crease = CreaseLineVertices(m, o.creaseDeg, o.creaseMinEdges, o.creaseStraightShare);
-    const int n = dropThinRims ? DropThinCreaseLines(m, crease, o.creaseThinEdges) : 0;
-    if (dropped) *dropped = n;
-    return crease;
-  }
-
-  /// Is m the input surface itself, vertex for vertex (live vertices in order, same positions)?
-  /// Then the edit guard can take the crease lines the reduction keeps sharp from m's flags
-  /// (EditGuard's inputCrease); a remeshed input is not: its thin rims stay protected, so the
-  /// guard's crease samples and the relaxation's fixed vertices keep agreeing. O(V), once.
-  static bool IsTheInput(const MeshType& m, const SurfaceProjector& original) {
-    const auto& p = original.Mesh().vert;
-    if (size_t(m.vn) != p.size() || m.vert.size() != p.size()) return false;
-    size_t k = 0;
-    for (auto& v : m.vert) {
-      if (v.IsD()) continue;
-      if (k >= p.size() || vcg::Point3f::Construct(v.cP()) != p[k].cP()) return false;
-      ++k;
+  /// The vertices of the crease lines of m that stay sharp: its crease lines (the rule of
+  /// CreaseLineVertices) but a thin part's rims (thin_creases.h; opt.creaseThinEdges 0: none
+  /// dropped). With original, *inputCrease gets the same for the input the guard measures
+  /// against (per vertex of its copy), judged against m too, so the two agree even when m is a
+  /// remeshing of it; *dropped: the number of m's lines dropped. Once per run (and once more for
+  /// the final relaxation).
+  static std::vector<char> ProtectedCreases(MeshType& m, const ReductionOptions& o,
+                                            const SurfaceProjector* original = nullptr,
+                                            std::vector<char>* inputCrease = nullptr, int* dropped = nullptr) {
+    std::vector<CreaseLineEdge> lines = CreaseLineEdgesOf(m, o.creaseDeg, o.creaseMinEdges, o.creaseStraightShare);
+    std::vector<CreaseLineEdge> inputLines;
+    if (original && inputCrease)
+      inputLines = CreaseLineEdgesOfSoup(original->Mesh(), o.creaseDeg, o.creaseMinEdges, o.creaseStraightShare);
+    int n = 0;
+    if (o.creaseThinEdges > 0 && (!lines.empty() || !inputLines.empty())) {
+      ThinRimProbe<MeshType> probe(m, o.creaseThinEdges);
+      n = DropThinLines(lines, m.vert.size(), probe);
+      if (original && inputCrease) DropThinLines(inputLines, original->Mesh().vert.size(), probe);
     }
-    return k == p.size();
+    if (original && inputCrease) *inputCrease = LineVertices(inputLines, original->Mesh().vert.size());
+    if (dropped) *dropped = n;
+    return LineVertices(lines, m.vert.size());
   }
 
   static CompositeOptions Quiet(const std::vector<char>* crease) {
@@ -532,7 +528,7 @@ class AutomaticReduction {
       if (ed_.IsLive(int(i)) && !state_.Frozen(int(i))) all.push_back(int(i));
     // relaxing the vertices of crease lines would round them (issue 14: creases within 0.1%):
     // they stay, the input's and those of the lines now (vertices edits created on them)
-    std::vector<char> crease = ProtectedCreases(m_, opt_, dropThinRims_);
+    std::vector<char> crease = ProtectedCreases(m_, opt_);
     for (size_t i = 0; i < crease_.size() && i < crease.size(); ++i) crease[i] |= crease_[i];
     if (opt_.finalRelax == RelaxMode::Global) {
       const double before = MeasureShape(m_).minAngleDeg;
@@ -598,12 +594,13 @@ class AutomaticReduction {
   const SurfaceProjector& original_;
   ReductionOptions opt_;
   Editor ed_;
-  /// Does the run leave a thin part's rims unprotected (opt.creaseThinEdges, thin_creases.h)?
-  /// Only when the mesh is the input itself (IsTheInput); thinRimLines_: how many it left.
-  bool dropThinRims_;
+  /// Per vertex of the input's copy (original_.Mesh()), 1 on a crease line the run keeps sharp
+  /// (ProtectedCreases): the edit guard's crease samples are those lines'. thinRimLines_: the
+  /// mesh's crease lines left unprotected as a thin part's rims (thin_creases.h).
+  std::vector<char> inputCrease_;
   int thinRimLines_ = 0;
   /// Per vertex index of the input, 1 on a crease line (opt.creaseDeg, opt.creaseMinEdges; not
-  /// a thin part's rim, with dropThinRims_): no relaxation moves these, so creases stay sharp (issue 14). Vertices created later are free
+  /// a thin part's rim, ProtectedCreases): no relaxation moves these, so creases stay sharp (issue 14). Vertices created later are free
   /// (the guard's crease check undoes an edit that cuts a crease); indices are stable during a
   /// run (nothing is compacted until its end).
   std::vector<char> crease_;

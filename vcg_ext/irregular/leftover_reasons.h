@@ -237,8 +237,16 @@ class LeftoverAnalysis {
     for (VertexType* n : s.neighbors) h += double((n->cP() - V(v)->cP()).Norm());
     h /= double(s.neighbors.size());
     if (!(h > 0)) return std::numeric_limits<double>::infinity();
-    const CoordType nv = Normal(s);
-    const CoordType pv = V(v)->cP();
+    return ThicknessAt(V(v)->cP(), Normal(s), h);
+  }
+
+  /// The local thickness behind point pv of a surface whose outward unit normal there is nv,
+  /// in units of h: the distance to the nearest vertex of the mesh behind it (against nv) whose
+  /// normal faces the other way (dot < -0.5), over h; infinity when none lies within
+  /// thinEdges * h. pv need not be a vertex of the mesh (thin_creases.h probes another mesh's
+  /// edges with it).
+  double ThicknessAt(const CoordType& pv, const CoordType& nv, double h) {
+    if (!(h > 0)) return std::numeric_limits<double>::infinity();
     const double radius = opt_.thinEdges * h;
     BuildGrid();
     double best = std::numeric_limits<double>::infinity();
