@@ -31,6 +31,24 @@
 namespace vcg_ext {
 namespace irregular {
 
+/// The connected sets of a graph over vertices 0..n-1 (union-find with path halving): the
+/// lines of a set of edges. O(n) memory; near-constant time per call.
+class VertexSets {
+ public:
+  explicit VertexSets(size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0u); }
+  uint32_t Find(uint32_t x) {
+    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
+    return x;
+  }
+  void Join(uint32_t x, uint32_t y) {
+    const uint32_t a = Find(x), b = Find(y);
+    if (a != b) parent_[a] = b;
+  }
+
+ private:
+  std::vector<uint32_t> parent_;
+};
+
 /// keep[i] = 1 when sharp edge i (a pair of vertex indices below nVerts) belongs to a crease
 /// line: a connected set of at least minEdges sharp edges whose vertices, but for two (an open
 /// line's ends) or 1 - minStraightShare of them, have exactly two edges of the set, turning by
@@ -40,16 +58,9 @@ namespace irregular {
 template <class PosFn>
 std::vector<char> CreaseLineEdges(const std::vector<std::pair<uint32_t, uint32_t>>& edges, size_t nVerts, int minEdges,
                                   PosFn pos, double minStraightShare = 0.9, double maxTurnDeg = 30) {
-  std::vector<uint32_t> parent(nVerts);
-  std::iota(parent.begin(), parent.end(), 0u);
-  auto find = [&](uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
-  for (const auto& e : edges) {
-    const uint32_t a = find(e.first), b = find(e.second);
-    if (a != b) parent[a] = b;
-  }
+  VertexSets sets(nVerts);
+  auto find = [&](uint32_t x) { return sets.Find(x); };
+  for (const auto& e : edges) sets.Join(e.first, e.second);
   // per root: edges, vertices, vertices passed straight through
   std::vector<int> count(nVerts, 0), verts, straight;
   for (const auto& e : edges) ++count[find(e.first)];

@@ -169,16 +169,9 @@ class ThinRimProbe {
 template <class Probe>
 int DropThinLines(std::vector<CreaseLineEdge>& lines, size_t nVerts, Probe& probe, double minShare = 0.5) {
   if (lines.empty()) return 0;
-  std::vector<uint32_t> parent(nVerts);
-  std::iota(parent.begin(), parent.end(), 0u);
-  auto find = [&](uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
-  for (const CreaseLineEdge& e : lines) {
-    const uint32_t a = find(e.a), b = find(e.b);
-    if (a != b) parent[a] = b;
-  }
+  VertexSets sets(nVerts);
+  auto find = [&](uint32_t x) { return sets.Find(x); };
+  for (const CreaseLineEdge& e : lines) sets.Join(e.a, e.b);
   std::vector<int> edges(nVerts, 0), thin(nVerts, 0);
   for (const CreaseLineEdge& e : lines) {
     const uint32_t r = find(e.a);
