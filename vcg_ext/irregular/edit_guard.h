@@ -25,6 +25,7 @@
 
 #include <vcg/space/distance3.h>
 
+#include "crease_line_edges.h"
 #include "graph_ops.h"
 #include "reduction_options.h"
 #include "reduction_state.h"
@@ -51,12 +52,18 @@ class EditGuard {
   /// redoes the run if it still overshoots (Tighten).
   /// crease: per vertex index, 1 = never moved by RelaxAround (null: none). inputCrease: per
   /// vertex index of the input (the projector's mesh), 1 on the crease lines the run keeps sharp;
-  /// only those lines' samples get the crease budget (null: every crease line's, by the rule of
-  /// crease_lines.h). Both outlive the guard.
+  /// only those lines' samples get the crease budget (null: every crease line's,
+  /// CreaseLineEdgesOfSoup). Both outlive the guard.
   EditGuard(MeshType& m, const SurfaceProjector& original, const ReductionOptions& opt, Editor& ed,
             ReductionState<MeshType>& state, const std::vector<char>* crease = nullptr,
             const std::vector<char>* inputCrease = nullptr)
       : m_(m), original_(original), opt_(opt), ed_(ed), state_(state), crease_(crease), inputCrease_(inputCrease) {
+    if (!inputCrease_) {
+      ownInputCrease_ = LineVertices(CreaseLineEdgesOfSoup(original.Mesh(), opt_.creaseDeg, opt_.creaseMinEdges,
+                                                           opt_.creaseStraightShare),
+                                     original.Mesh().vert.size());
+      inputCrease_ = &ownInputCrease_;
+    }
     budget_ = 0.9 * opt_.hausdorffBudgetPercent / 100.0 * double(original.Diagonal());
     creaseBudget_ = opt_.creaseBudgetPercent / 100.0 * double(original.Diagonal());
     BuildInputSamples(samplesPerEdge_ = opt_.hausdorffSamplesPerEdge);
@@ -562,9 +569,8 @@ class EditGuard {
     std::vector<vcg::Point3f> samples, normals;
     std::vector<char> onCrease;  // per sample: on a crease line (opt.creaseDeg)
     std::vector<int> source;     // per sample: the input's face it lies on
-    SharpEdgeSamples(original_.Mesh(), opt_.sharpEdgeDeg, opt_.creaseDeg, opt_.creaseMinEdges,
-                     opt_.creaseStraightShare, samples, normals,
-                     onCrease, &source, inputCrease_);
+    SharpEdgeSamples(original_.Mesh(), opt_.sharpEdgeDeg, opt_.creaseDeg, *inputCrease_, samples, normals, onCrease,
+                     &source);
     if (perEdge > 0) ThinnedSurfaceSamples(original_.Mesh(), h / perEdge, samples, normals, &source);
     onCrease.resize(samples.size(), 0);
     // a sample is a point and a face's normal: the points repeat (a vertex once per sharp edge
@@ -597,14 +603,13 @@ class EditGuard {
 
   /// Ends and midpoints of the edges of m whose dihedral angle exceeds angleDeg, with the
   /// normal of each face along the edge; onCrease[i]: sample i lies on a crease line (an
-  /// interior edge sharper than creaseDeg, in a connected set of at least creaseMinEdges of
-  /// them, crease_lines.h; none when creaseDeg is 0; with protectedVertex, only an edge whose
-  /// two ends it flags); source (if given): the face of each. O(F log F).
-  static void SharpEdgeSamples(const SurfaceProjector::PMesh& m, double angleDeg, double creaseDeg, int creaseMinEdges,
-                               double creaseStraightShare,
-                               std::vector<vcg::Point3f>& pts, std::vector<vcg::Point3f>& nrm,
-                               std::vector<char>& onCrease, std::vector<int>* source = nullptr,
-                               const std::vector<char>* protectedVertex = nullptr) {
+  /// interior edge sharper than creaseDeg whose two ends lineVertex flags: a line's edge, as an
+  /// edge that sharp joining two lines' vertices makes them one line; none when creaseDeg is 0);
+  /// source (if given): the face of each. O(F log F).
+  static void SharpEdgeSamples(const SurfaceProjector::PMesh& m, double angleDeg, double creaseDeg,
+                               const std::vector<char>& lineVertex, std::vector<vcg::Point3f>& pts,
+                               std::vector<vcg::Point3f>& nrm, std::vector<char>& onCrease,
+                               std::vector<int>* source = nullptr) {
     // One flat array of half-edges sorted by (edge, face), not a map of vectors: the same
     // samples in the same order (the map's pointer keys ordered the vertices by index), and
     // 12 bytes per half-edge instead of a node and a vector per edge (at 1.2M faces the map
@@ -625,26 +630,14 @@ class EditGuard {
       return x.a != y.a ? x.a < y.a : x.b != y.b ? x.b < y.b : x.f < y.f;
     });
     const double c = std::cos(angleDeg * M_PI / 180.0), cc = std::cos(creaseDeg * M_PI / 180.0);
-    // the crease lines first: the edges sharper than creaseDeg, kept when their set is long
-    std::vector<std::pair<uint32_t, uint32_t>> creaseEdges;
-    for (size_t i = 0, j = 0; i < he.size(); i = j) {
-      for (j = i + 1; j < he.size() && he[j].a == he[i].a && he[j].b == he[i].b; ++j) {
-      }
-      if (creaseDeg > 0 && j - i == 2 && double(m.face[he[i].f].cN().dot(m.face[he[i + 1].f].cN())) < cc)
-        creaseEdges.push_back({he[i].a, he[i].b});
-    }
-    const std::vector<char> lineEdge = CreaseLineEdges(
-        creaseEdges, m.vert.size(), creaseMinEdges, [&m](uint32_t i) { return m.vert[i].cP(); }, creaseStraightShare);
-    size_t nextCrease = 0;  // creaseEdges is in the order of the loop below
     for (size_t i = 0, j = 0; i < he.size(); i = j) {
       for (j = i + 1; j < he.size() && he[j].a == he[i].a && he[j].b == he[i].b; ++j) {
       }
       // boundary and non-manifold edges are features too
       const double dot = j - i != 2 ? 1.0 : double(m.face[he[i].f].cN().dot(m.face[he[i + 1].f].cN()));
       const bool sharpCrease = creaseDeg > 0 && j - i == 2 && dot < cc;
-      const bool crease = sharpCrease && lineEdge[nextCrease++] &&
-                          (!protectedVertex || (he[i].b < protectedVertex->size() && (*protectedVertex)[he[i].a] &&
-                                                  (*protectedVertex)[he[i].b]));
+      const bool crease =
+          sharpCrease && he[i].b < lineVertex.size() && lineVertex[he[i].a] && lineVertex[he[i].b];
       const bool sharp = j - i != 2 || dot < c;
       if (!sharp) continue;
       const auto& a = m.vert[he[i].a];
@@ -692,7 +685,8 @@ class EditGuard {
   Editor& ed_;
   ReductionState<MeshType>& state_;
   const std::vector<char>* crease_;  ///< vertices RelaxAround never moves (the input's crease lines)
-  const std::vector<char>* inputCrease_;  ///< the input's crease lines kept sharp, by its vertex index (null: all)
+  const std::vector<char>* inputCrease_;  ///< the input's crease lines kept sharp, by its vertex index
+  std::vector<char> ownInputCrease_;      ///< ... all of them, when the guard was given none
   double budget_ = 0;           ///< per-edit Hausdorff budget (absolute), tightened by retries
   double creaseBudget_ = 0;     ///< per-edit budget of the crease samples (absolute)
   double samplesPerEdge_ = 0;   ///< input samples per edge length besides sharp edges, raised by retries

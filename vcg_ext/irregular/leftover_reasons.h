@@ -269,6 +269,12 @@ class LeftoverAnalysis {
     return best / h;
   }
 
+  /// The mesh's mean edge length (over the faces' edges; built with the grid, once).
+  double MeanEdgeLength() {
+    BuildGrid();
+    return meanEdge_;
+  }
+
  private:
   VertexType* V(int i) { return &m_.vert[size_t(i)]; }
   int Index(const VertexType* v) const { return int(vcg::tri::Index(m_, v)); }
@@ -373,6 +379,7 @@ class LeftoverAnalysis {
     for (auto& f : m_.face)
       if (!f.IsD())
         for (int z = 0; z < 3; ++z, ++n) sum += double((f.cP(z) - f.cP((z + 1) % 3)).Norm());
+    meanEdge_ = n ? sum / double(n) : 0;
     cell_ = n ? std::max(1e-12, opt_.thinEdges * sum / double(n)) : 1.0;
     for (size_t i = 0; i < m_.vert.size(); ++i)
       if (Live(int(i))) {
@@ -385,6 +392,7 @@ class LeftoverAnalysis {
   LeftoverOptions opt_;
   bool built_ = false;
   double cell_ = 1;
+  double meanEdge_ = 0;
   std::unordered_map<uint64_t, std::vector<int>> grid_;
   std::vector<signed char> kind_;                ///< per vertex: 0 not known yet, 1 not, 2 interior irregular
   std::unordered_map<int, int> clusterCharge_;   ///< ClusterCharge's memo

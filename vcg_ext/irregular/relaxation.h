@@ -39,6 +39,7 @@
 #include <Eigen/Sparse>
 #include <vcg/complex/complex.h>
 
+#include "crease_line_edges.h"
 #include "crease_lines.h"
 #include "surface_projector.h"
 #include "stamp_set.h"
@@ -260,24 +261,7 @@ std::vector<char> CreaseVertices(MeshType& m, double angleDeg) {
 /// set). Needs FF adjacency. O(F + V + E log E) for the E sharp edges, once.
 template <class MeshType>
 std::vector<char> CreaseLineVertices(MeshType& m, double angleDeg, int minEdges, double minStraightShare = 0.9) {
-  std::vector<char> crease(m.vert.size(), 0);
-  if (angleDeg <= 0) return crease;
-  const double c = std::cos(angleDeg * M_PI / 180.0);
-  std::vector<std::pair<uint32_t, uint32_t>> sharp;
-  for (auto& f : m.face) {
-    if (f.IsD()) continue;
-    for (int z = 0; z < 3; ++z) {
-      auto* g = f.FFp(z);
-      if (g == &f || g < &f) continue;  // each interior edge once
-      if (double(vcg::TriangleNormal(f).Normalize().dot(vcg::TriangleNormal(*g).Normalize())) < c)
-        sharp.push_back({uint32_t(vcg::tri::Index(m, f.V(z))), uint32_t(vcg::tri::Index(m, f.V((z + 1) % 3)))});
-    }
-  }
-  const std::vector<char> keep = CreaseLineEdges(
-      sharp, m.vert.size(), minEdges, [&m](uint32_t i) { return m.vert[i].cP(); }, minStraightShare);
-  for (size_t i = 0; i < sharp.size(); ++i)
-    if (keep[i]) crease[sharp[i].first] = crease[sharp[i].second] = 1;
-  return crease;
+  return LineVertices(CreaseLineEdgesOf(m, angleDeg, minEdges, minStraightShare), m.vert.size());
 }
 
 namespace relax_detail {

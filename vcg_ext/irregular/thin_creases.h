@@ -17,10 +17,9 @@
 // guard measures against (whose samples get the crease budget) are judged alike, even when the
 // two are different meshes (the filter's remeshing first).
 //
-// Cost: once per run, O(F) (with FF adjacency) or O(F log F) (without: half-edges sorted) to
-// find the lines, O(V) for the union-find over their ends, and per line edge two ball queries
-// of thinEdges edge lengths in a grid of the edited mesh's vertices, built only when a line
-// exists.
+// Cost: once per run, the lines (crease_line_edges.h), O(V) for the union-find over their ends,
+// and per line edge two ball queries of thinEdges edge lengths in a grid of the edited mesh's
+// vertices, built only when a line exists.
 #pragma once
 
 #include <algorithm>
@@ -30,126 +29,26 @@
 
 #include <vcg/space/point3.h>
 
-#include "crease_lines.h"
+#include "crease_line_edges.h"
 #include "leftover_reasons.h"
 
 namespace vcg_ext {
 namespace irregular {
 
-/// An edge of a crease line: its ends (vertex indices of its mesh), its midpoint and the unit
-/// normals of its two faces.
-struct CreaseLineEdge {
-  uint32_t a, b;
-  vcg::Point3d mid, nA, nB;
-};
-
-namespace thin_detail {
-
-template <class FaceType>
-vcg::Point3d UnitNormal(const FaceType& f) {
-  vcg::Point3d n = vcg::Point3d::Construct(vcg::TriangleNormal(f));
-  const double l = n.Norm();
-  return l > 0 ? n / l : n;
-}
-
-/// The candidates (interior edges sharper than angleDeg) with their faces, kept when their set
-/// is a crease line (CreaseLineEdges).
-template <class MeshType>
-std::vector<CreaseLineEdge> KeepLines(const MeshType& m, std::vector<CreaseLineEdge> sharp, int minEdges,
-                                      double minStraightShare) {
-  std::vector<std::pair<uint32_t, uint32_t>> ends;
-  ends.reserve(sharp.size());
-  for (const CreaseLineEdge& e : sharp) ends.push_back({e.a, e.b});
-  const std::vector<char> keep = CreaseLineEdges(
-      ends, m.vert.size(), minEdges, [&m](uint32_t i) { return m.vert[i].cP(); }, minStraightShare);
-  std::vector<CreaseLineEdge> lines;
-  for (size_t i = 0; i < sharp.size(); ++i)
-    if (keep[i]) lines.push_back(sharp[i]);
-  return lines;
-}
-
-}  // namespace thin_detail
-
-/// The crease-line edges of a mesh with FF adjacency (the rule of CreaseLineVertices,
-/// relaxation.h: edges sharper than angleDeg in sets of minEdges that run as lines). O(F + E log E).
-template <class MeshType>
-std::vector<CreaseLineEdge> CreaseLineEdgesOf(MeshType& m, double angleDeg, int minEdges, double minStraightShare) {
-  std::vector<CreaseLineEdge> sharp;
-  if (angleDeg <= 0) return sharp;
-  const double c = std::cos(angleDeg * M_PI / 180.0);
-  for (auto& f : m.face) {
-    if (f.IsD()) continue;
-    for (int z = 0; z < 3; ++z) {
-      auto* g = f.FFp(z);
-      if (g == &f || g < &f) continue;  // each interior edge once
-      // the sharpness test exactly as CreaseLineVertices computes it (the same lines, to the bit)
-      if (!(double(vcg::TriangleNormal(f).Normalize().dot(vcg::TriangleNormal(*g).Normalize())) < c)) continue;
-      const vcg::Point3d nf = thin_detail::UnitNormal(f), ng = thin_detail::UnitNormal(*g);
-      const uint32_t a = uint32_t(vcg::tri::Index(m, f.V(z))), b = uint32_t(vcg::tri::Index(m, f.V((z + 1) % 3)));
-      sharp.push_back({a, b, (vcg::Point3d::Construct(f.cP(z)) + vcg::Point3d::Construct(f.cP((z + 1) % 3))) / 2, nf, ng});
-    }
-  }
-  return thin_detail::KeepLines(m, std::move(sharp), minEdges, minStraightShare);
-}
-
-/// The same for a mesh without adjacency but with unit face normals (the edit guard's copy of
-/// the input, SurfaceProjector::Mesh): its half-edges sorted by their ends; sharpness from the
-/// stored normals, as the guard's SharpEdgeSamples computes it. Vertex indices are the mesh's.
-/// O(F log F).
-template <class MeshType>
-std::vector<CreaseLineEdge> CreaseLineEdgesOfSoup(const MeshType& m, double angleDeg, int minEdges,
-                                                  double minStraightShare) {
-  std::vector<CreaseLineEdge> sharp;
-  if (angleDeg <= 0) return sharp;
-  struct HalfEdge {
-    uint32_t a, b, f;
-  };
-  std::vector<HalfEdge> he;
-  he.reserve(3 * m.face.size());
-  for (size_t i = 0; i < m.face.size(); ++i) {
-    if (m.face[i].IsD()) continue;
-    for (int z = 0; z < 3; ++z) {
-      uint32_t a = uint32_t(vcg::tri::Index(m, m.face[i].cV(z))), b = uint32_t(vcg::tri::Index(m, m.face[i].cV((z + 1) % 3)));
-      if (a > b) std::swap(a, b);
-      he.push_back({a, b, uint32_t(i)});
-    }
-  }
-  std::sort(he.begin(), he.end(), [](const HalfEdge& x, const HalfEdge& y) {
-    return x.a != y.a ? x.a < y.a : x.b != y.b ? x.b < y.b : x.f < y.f;
-  });
-  const double c = std::cos(angleDeg * M_PI / 180.0);
-  for (size_t i = 0, j = 0; i < he.size(); i = j) {
-    for (j = i + 1; j < he.size() && he[j].a == he[i].a && he[j].b == he[i].b; ++j) {
-    }
-    if (j - i != 2) continue;  // boundary or non-manifold
-    if (!(double(m.face[he[i].f].cN().dot(m.face[he[i + 1].f].cN())) < c)) continue;
-    const vcg::Point3d nf = thin_detail::UnitNormal(m.face[he[i].f]), ng = thin_detail::UnitNormal(m.face[he[i + 1].f]);
-    const vcg::Point3d mid = (vcg::Point3d::Construct(m.vert[he[i].a].cP()) + vcg::Point3d::Construct(m.vert[he[i].b].cP())) / 2;
-    sharp.push_back({he[i].a, he[i].b, mid, nf, ng});
-  }
-  return thin_detail::KeepLines(m, std::move(sharp), minEdges, minStraightShare);
-}
-
-/// Judges edges for thinness against one mesh (the edited one): its vertex grid is built once,
-/// on the first question. h: the mesh's mean edge length.
+/// Judges edges for thinness against one mesh (the edited one), in units of its mean edge
+/// length: its vertex grid is built once, on the first question.
 template <class MeshType>
 class ThinRimProbe {
  public:
-  ThinRimProbe(MeshType& m, double thinEdges) : analysis_(m, Options(thinEdges)), thinEdges_(thinEdges) {
-    double sum = 0;
-    long n = 0;
-    for (auto& f : m.face)
-      if (!f.IsD())
-        for (int z = 0; z < 3; ++z, ++n) sum += double((f.cP(z) - f.cP((z + 1) % 3)).Norm());
-    h_ = n ? sum / double(n) : 0;
-  }
+  ThinRimProbe(MeshType& m, double thinEdges) : analysis_(m, Options(thinEdges)), thinEdges_(thinEdges) {}
 
   /// Is the part thinner than thinEdges mean edge lengths behind either face of e?
   bool Thin(const CreaseLineEdge& e) {
     typedef typename MeshType::CoordType C;
     const C p = C::Construct(e.mid);
-    return analysis_.ThicknessAt(p, C::Construct(e.nA), h_) < thinEdges_ ||
-           analysis_.ThicknessAt(p, C::Construct(e.nB), h_) < thinEdges_;
+    const double h = analysis_.MeanEdgeLength();
+    return analysis_.ThicknessAt(p, C::Construct(e.nA), h) < thinEdges_ ||
+           analysis_.ThicknessAt(p, C::Construct(e.nB), h) < thinEdges_;
   }
 
  private:
@@ -160,7 +59,6 @@ class ThinRimProbe {
   }
   LeftoverAnalysis<MeshType> analysis_;
   double thinEdges_;
-  double h_ = 0;
 };
 
 /// Removes from `lines` (the crease-line edges of a mesh of nVerts vertices) every line (a
@@ -185,13 +83,6 @@ int DropThinLines(std::vector<CreaseLineEdge>& lines, size_t nVerts, Probe& prob
   lines.erase(std::remove_if(lines.begin(), lines.end(), [&](const CreaseLineEdge& e) { return drop[find(e.a)] != 0; }),
               lines.end());
   return dropped;
-}
-
-/// Per vertex of a mesh of nVerts vertices, 1 on one of the lines.
-inline std::vector<char> LineVertices(const std::vector<CreaseLineEdge>& lines, size_t nVerts) {
-  std::vector<char> flags(nVerts, 0);
-  for (const CreaseLineEdge& e : lines) flags[e.a] = flags[e.b] = 1;
-  return flags;
 }
 
 }  // namespace irregular
