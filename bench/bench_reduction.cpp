@@ -124,6 +124,8 @@ int main(int argc, char** argv) {
     else if (key == "maxSweeps") opt.maxSweeps = int(v);
     else if (key == "localRelaxIterations") opt.localRelaxIterations = int(v);
     else if (key == "minAngle") opt.minAngleDeg = v;
+    else if (key == "angleAllowance") opt.angleAllowancePercent = v;
+    else if (key == "angleFloor") opt.angleFloorDeg = v;
     else if (key == "budget") opt.hausdorffBudgetPercent = v;
     else if (key == "maxRefusals") maxRefusals = int(v);
     else if (key == "angleRepairRounds") opt.angleRepairRounds = int(v);
@@ -229,6 +231,14 @@ int main(int argc, char** argv) {
                                                     : "");
     if (r.finalSweepsRestored > 0) std::printf("  final sweeps: %d vertices put back\n", r.finalSweepsRestored);
     if (r.thinRimLines > 0) std::printf("  crease lines not kept sharp as thin parts' rims: %d\n", r.thinRimLines);
+    if (r.boundaryIrregularBefore > 0) {
+      const auto& bs = r.boundaryStage;
+      std::printf("  boundary: %d -> %d irregular (limit %d); stage: %d candidates, absorbed %d v5, %d v7, %d pairs "
+                  "(%d moved), %d hops, cancelled %d, added %d, undone %d, refused %d, %ld attempts in %d calls\n",
+                  r.boundaryIrregularBefore, r.boundaryIrregularAfter, bs.boundaryLimit, bs.candidates, bs.absorbedV5,
+                  bs.absorbedV7, bs.absorbedPairs, bs.pairsMoved, bs.hops, bs.cancelled, bs.boundaryAdded, bs.undone,
+                  bs.refused, bs.attempts, bs.calls);
+    }
     if (opt.aggregateLeftovers)
       std::printf("  aggregated: %d v4 and %d v8 of %d pairs tried\n", r.aggregatedV4, r.aggregatedV8, r.aggregationsTried);
     std::printf("  kept: %d type splits, %d local cancellations, %d transports (%d pair steps), %d glides, %d split-and-absorbs (%d partial)\n",

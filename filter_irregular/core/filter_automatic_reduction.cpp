@@ -124,6 +124,8 @@ FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par
   opt.targetCount = par.Int("targetCount");
   opt.hausdorffBudgetPercent = budget;
   opt.minAngleDeg = par.Float("minAngle");
+  opt.angleAllowancePercent = par.Float("angleAllowance");
+  opt.angleFloorDeg = par.Float("angleFloor");
   irr::SetFilterTravel(opt, par.Int("maxTravel"));  // glides 4x; a longer travel: more refusals per region
   opt.finalRelax = par.Enum("relaxation") == 1 ? irr::RelaxMode::Global : irr::RelaxMode::Local;
   if (par.Float("timeLimit") > 0) opt.timeLimitSeconds = par.Float("timeLimit");  // 0: no limit

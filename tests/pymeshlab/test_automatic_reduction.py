@@ -208,8 +208,10 @@ def test_irregular_before_is_the_input_count_without_remeshing():
 def test_deterministic_and_every_parameter_has_its_effect():
     """On mesh_with_border (548 vertices, 297 irregular): the same run twice gives the same
     mesh; maxTravel 1 leaves more irregular vertices than 12; minAngle bounds the result's
-    smallest angle (from below, or by the input's) and 0 lets thinner triangles through; the
-    global final relaxation keeps the budget; a tiny time limit stops early (stop_reason 2)."""
+    smallest angle (from below, or by the input's) when angleAllowance is 0, and 0 lets thinner
+    triangles through; with the allowance (default 0.8%) the share of triangles under minAngle
+    stays within it (or the input's) and angleFloor bounds the smallest angle; the global final
+    relaxation keeps the budget; a tiny time limit stops early (stop_reason 2)."""
     def run(**kw):
         ms = load("mesh_with_border.off")
         t0 = tri(ms)
@@ -225,11 +227,24 @@ def test_deterministic_and_every_parameter_has_its_effect():
     for key in ("gave_up_regions", "gave_up_vertices"):
         assert a[key] == b[key], key
     assert 0 <= a["gave_up_regions"] <= a["gave_up_vertices"] <= a["interior_irregular_after"]
-    input_min = fo.shape_measures(t0)["min_angle"]
-    assert a["min_angle_after"] >= min(30, input_min) - 1e-9
+    input_shape = fo.shape_measures(t0)
+    input_min = input_shape["min_angle"]
+    # the allowance: under the floor never, under 30 degrees within 0.8% of the triangles
+    _, _, _, t_a = run()
+    assert a["min_angle_after"] >= min(20, input_min) - 1e-9
+    assert fo.shape_measures(t_a)["share_below_30"] <= max(0.008, input_shape["share_below_30"]) + 1e-12
+    _, floored, _, _ = run(anglefloor=26)
+    assert floored["min_angle_after"] >= min(26, input_min) - 1e-9
+    _, kept30, _, _ = run(angleallowance=0)
+    assert kept30["min_angle_after"] >= min(30, input_min) - 1e-9
+    print("mesh_with_border: smallest angle %.2f (input %.2f), %.2f with angleFloor 26, %.2f with angleAllowance 0; "
+          "irregular left %d, %d, %d" % (a["min_angle_after"], input_min, floored["min_angle_after"],
+                                         kept30["min_angle_after"], a["irregular_after"], floored["irregular_after"],
+                                         kept30["irregular_after"]))
+    assert a["min_angle_after"] < kept30["min_angle_after"]  # the allowance was used
     _, short, _, _ = run(maxtravel=1)
     assert short["irregular_after"] > a["irregular_after"]
-    _, strict, _, _ = run(minangle=45)
+    _, strict, _, _ = run(minangle=45, angleallowance=0)
     assert strict["min_angle_after"] >= min(45, input_min) - 1e-9
     assert strict["irregular_after"] > a["irregular_after"] and strict["undone"] > a["undone"]
     # the guard's refusals by reason: a stricter angle bound refuses more for the angle

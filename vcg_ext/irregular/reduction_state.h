@@ -219,6 +219,8 @@ class ReductionState {
   // ------------------------------------------------------------ guarded edits (edit_guard.h)
   /// A guarded edit begins (they nest: a split-and-absorb contains transports).
   void EnterEdit() { ++depth_; }
+  /// Guarded edits in progress (1: the outermost one).
+  int Depth() const { return depth_; }
   /// It ends; the outermost one forgets the deleted vertices it collected.
   void LeaveEdit() {
     if (--depth_ == 0) removed_.clear();
