@@ -781,9 +781,11 @@ def write_report(out, name, header, results, size_results, memory, plot_info, se
     prints the text; returns the target rows."""
     lines = [header, ""]
     lines += table(results)
-    stops = ["%s@%d: stop_reason %s, undone %s, interior %s -> %s%s" % (
+    stops = ["%s@%d: stop_reason %s, undone %s, interior %s -> %s%s%s" % (
         r["model"], r["vertices"], r["filter"].get("stop_reason"), r["filter"].get("undone"),
         r["filter"].get("interior_irregular_before"), r["filter"].get("interior_irregular_after"),
+        ", %d crease lines not kept sharp as thin parts' rims" % r["filter"]["thin_rim_lines"]
+        if r["filter"].get("thin_rim_lines") else "",
         ", %d non-manifold vertices of the peer's output repaired first" % r["filter"]["non_manifold_vertices_repaired"]
         if r["filter"].get("non_manifold_vertices_repaired") else "")
         for r in results if "failed" not in r and r.get("filter")]

@@ -12,8 +12,9 @@
 //     edit cannot cut a crease;
 //   * no protected (frozen) vertex sees one of its faces change.
 // The angle allowance (ReductionOptions::angleAllowancePercent, off by default): an edit that
-// fails the angle bound may still pass if its angles stay at or above angleFloorDeg and the
-// mesh's count of triangles under the bound stays within the allowance. The count (UnderBound)
+// fails the angle bound may still pass if its angles stay at or above angleFloorDeg (a triangle
+// at a crease line keeps its own bound) and the mesh's count of triangles under the bound stays
+// within the allowance. The count (UnderBound)
 // is kept per face slot: a flag per slot says "under the bound" as of the last committed edit.
 // The faces an edit in progress may have changed (the 2-rings gathered before it and at each
 // verdict, nested edits included: the dirty set) are compared with their flags when a verdict
@@ -121,10 +122,13 @@ class EditGuard {
     if (allowance_ > 0) MarkDirty(changed);
     if (elsewhere < std::min(opt_.minAngleDeg, angleBefore) ||
         atCrease < std::min(opt_.minAngleDeg - opt_.creaseAngleSlackDeg, angleBefore)) {
-      // the allowance: a floor instead of the bound, while the mesh's count allows
+      // the allowance: a floor instead of the bound, while the mesh's count allows; not at a
+      // crease line, whose vertices no relaxation moves, so no later sweep can lift a thin
+      // triangle there (fandisk at 20K: 191 irregular vertices left with the floor there too,
+      // 0.95%, smallest angle 16 degrees; 148 without, 24.5 degrees)
       const double floor = std::min(opt_.angleFloorDeg, opt_.minAngleDeg);
       const bool allowed = allowance_ > 0 && elsewhere >= std::min(floor, angleBefore) &&
-                           atCrease >= std::min(floor - opt_.creaseAngleSlackDeg, angleBefore) &&
+                           atCrease >= std::min(opt_.minAngleDeg - opt_.creaseAngleSlackDeg, angleBefore) &&
                            underBound_ + DirtyChange() <= allowance_;
       if (!allowed) return GuardVerdict::Angle;
     }

@@ -18,8 +18,9 @@
 // two are different meshes (the filter's remeshing first).
 //
 // Cost: once per run, the lines (crease_line_edges.h), O(V) for the union-find over their ends,
-// and per line edge two ball queries of thinEdges edge lengths in a grid of the edited mesh's
-// vertices, built only when a line exists.
+// and per line edge at most two ball queries of thinEdges edge lengths in a grid of the edited
+// mesh's vertices, built only when a line exists; a line's queries stop once its verdict is
+// known (0.9.30; fandisk at 20K, one 1266-edge line kept: most of its edges are not probed).
 #pragma once
 
 #include <algorithm>
@@ -70,10 +71,18 @@ int DropThinLines(std::vector<CreaseLineEdge>& lines, size_t nVerts, Probe& prob
   VertexSets sets(nVerts);
   auto find = [&](uint32_t x) { return sets.Find(x); };
   for (const CreaseLineEdge& e : lines) sets.Join(e.a, e.b);
-  std::vector<int> edges(nVerts, 0), thin(nVerts, 0);
+  std::vector<int> edges(nVerts, 0), probed(nVerts, 0), thin(nVerts, 0);
+  for (const CreaseLineEdge& e : lines) ++edges[find(e.a)];
+  // a line's probing stops once its verdict is known: enough thin edges to drop it, or too few
+  // edges left to reach that share (the verdicts are those of probing every edge)
+  auto decided = [&](uint32_t r) {
+    const double need = minShare * double(edges[r]);
+    return double(thin[r]) >= need || double(thin[r] + edges[r] - probed[r]) < need;
+  };
   for (const CreaseLineEdge& e : lines) {
     const uint32_t r = find(e.a);
-    ++edges[r];
+    if (decided(r)) continue;
+    ++probed[r];
     thin[r] += probe.Thin(e) ? 1 : 0;
   }
   int dropped = 0;
