@@ -18,8 +18,9 @@
 // is kept per face slot: a flag per slot says "under the bound" as of the last committed edit.
 // The faces an edit in progress may have changed (the 2-rings gathered before it and at each
 // verdict, nested edits included: the dirty set) are compared with their flags when a verdict
-// needs the count, and their flags are refreshed when the outermost edit is kept: O(the edit's
-// faces). Recount (one O(F) pass, once per sweep) makes it exact again where a change went
+// needs the count (one that fails the bound: O(the faces dirty so far in the outermost edit),
+// so a transport of L steps judged at each step costs O(L^2) face checks at worst), and their
+// flags are refreshed when the outermost edit is kept. Recount (one O(F) pass, once per sweep) makes it exact again where a change went
 // past those faces (the final polish, the boundary stage's relaxation between steps).
 // GuardedEdit is the scope of one edit: it remembers the journal checkpoint and the angle
 // before, and Accept() keeps or rolls back. Costs O(the edit's 2-ring) per check.
