@@ -136,12 +136,14 @@ AggregationReport AggregateLeftovers(MeshType& m, EditGuard<MeshType>& guard, Re
       for (const auto& kv : o.valences) touched.push_back(kv.first);
       touched.insert(touched.end(), o.created.begin(), o.created.end());
       guard.RelaxAround(touched);
-      GuardVerdict verdict = g.Verdict(touched);
+      GuardVerdict verdict = g.Verdict(touched, false);
       // a triangle left under the minimum angle: relax around the sharp corners again, as a
-      // transport's route is (GuardedEdit::RepairAngles), judged against the guard's own bound
+      // transport's route is (GuardedEdit::RepairAngles), judged against the guard's own bound;
+      // the angle allowance (edit_guard.h) only for what the repair could not lift
       if (verdict == GuardVerdict::Angle)
         verdict = g.RepairAngles(touched, kAggregationRepairRounds, std::min(guard.options().minAngleDeg, g.AngleBefore()),
                                  guard.options().angleRepairSlackDeg, false);
+      if (verdict == GuardVerdict::Angle) verdict = g.VerdictWithinAllowance(touched);
       if ((foldedBefore || !guard.FoldsAround(touched)) && state.CountChange(touched) < 0 &&
           verdict == GuardVerdict::Kept) {
         g.Keep(touched);

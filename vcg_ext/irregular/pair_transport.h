@@ -321,12 +321,15 @@ class PairTransport {
         if (guard_.FoldsAround(touched)) {
           refusal = kFolds;
         } else {
-          verdict = g.Verdict(touched);
+          // by the angle bound alone first, then the angle repair; the angle allowance
+          // (edit_guard.h) only for what the repair could not lift
+          verdict = g.Verdict(touched, false);
           if (verdict != GuardVerdict::Kept) {
             guard_.RelaxAround(touched);
-            verdict = g.Verdict(touched);
+            verdict = g.Verdict(touched, false);
           }
           if (verdict == GuardVerdict::Angle) repaired = (verdict = RepairAngles(g, touched)) == GuardVerdict::Kept;
+          if (verdict == GuardVerdict::Angle) verdict = g.VerdictWithinAllowance(touched);
           if (verdict != GuardVerdict::Kept) refusal = int(verdict);
         }
       }
