@@ -11,17 +11,19 @@
 //     sharper than opt.creaseDeg) are held to the much smaller crease budget, so that an
 //     edit cannot cut a crease;
 //   * no protected (frozen) vertex sees one of its faces change.
-// The angle allowance (ReductionOptions::angleAllowancePercent, off by default): an edit that
-// fails the angle bound may still pass if its angles stay at or above angleFloorDeg (a triangle
-// at a crease line keeps its own bound) and the mesh's count of triangles under the bound stays
-// within the allowance. The count (UnderBound)
-// is kept per face slot: a flag per slot says "under the bound" as of the last committed edit.
-// The faces an edit in progress may have changed (the 2-rings gathered before it and at each
-// verdict, nested edits included: the dirty set) are compared with their flags when a verdict
-// needs the count (one that fails the bound: O(the faces dirty so far in the outermost edit),
-// so a transport of L steps judged at each step costs O(L^2) face checks at worst), and their
-// flags are refreshed when the outermost edit is kept. Recount (one O(F) pass, once per sweep) makes it exact again where a change went
-// past those faces (the final polish, the boundary stage's relaxation between steps).
+// The angle allowance (ReductionOptions::angleAllowancePercent, default 0.8% of the triangles):
+// an edit that fails the angle bound may still pass if its angles stay at or above
+// angleFloorDeg (a triangle at a crease line keeps its own bound) and the mesh's count of
+// triangles under the bound stays within the allowance. Callers with an angle repair (routes,
+// aggregations) ask for it only once the repair failed (GuardedEdit::VerdictWithinAllowance).
+// The count (UnderBound) is kept per face slot: a flag per slot says "under the bound" as of
+// the last committed edit. The faces an edit in progress may have changed (the 2-rings gathered
+// before it and at each verdict, nested edits included: the dirty set) are compared with their
+// flags when a verdict needs the count (one that fails the bound: O(the faces dirty so far in
+// the outermost edit), so a transport of L steps judged at each step costs O(L^2) face checks
+// at worst), and their flags are refreshed when the outermost edit is kept. Recount (one O(F)
+// pass, once per sweep) makes it exact again where a change went past those faces (the final
+// polish, the boundary stage's relaxation between steps).
 // GuardedEdit is the scope of one edit: it remembers the journal checkpoint and the angle
 // before, and Accept() keeps or rolls back. Costs O(the edit's 2-ring) per check.
 #pragma once
@@ -130,8 +132,9 @@ class EditGuard {
         atCrease < std::min(opt_.minAngleDeg - opt_.creaseAngleSlackDeg, angleBefore)) {
       // the allowance: a floor instead of the bound, while the mesh's count allows; not at a
       // crease line, whose vertices no relaxation moves, so no later sweep can lift a thin
-      // triangle there (fandisk at 20K: 191 irregular vertices left with the floor there too,
-      // 0.95%, smallest angle 16 degrees; 148 without, 24.5 degrees)
+      // triangle there (fandisk at 20K, the allowance asked before the repair: 191 irregular
+      // vertices left with the floor there too, 0.95%, smallest angle 16 degrees; 148 without,
+      // 24.5 degrees)
       const double floor = std::min(opt_.angleFloorDeg, opt_.minAngleDeg);
       const bool allowed = allowance && allowance_ > 0 && elsewhere >= std::min(floor, angleBefore) &&
                            atCrease >= std::min(opt_.minAngleDeg - opt_.creaseAngleSlackDeg, angleBefore) &&
