@@ -156,7 +156,7 @@ class AutomaticReduction {
   /// One pass of the whole pipeline (type change, sweeps, final relaxation) into rep.
   void Edit(ReductionReport& rep) {
     state_.StartCount();
-    if (opt_.angleAllowancePercent > 0) guard_.Recount();
+    RecountAngleAllowance();
     bool go = Stage(rep, 0, "Splitting high and low valences");
     if (go) cancel_.ReduceTypes(rep);
     // The boundary stage (boundary_reduction.h): its edits pass the same guard; a kept one is
@@ -197,10 +197,10 @@ class AutomaticReduction {
     for (int sweep = 0, travel = 0; go && sweep < opt_.maxSweeps; ++sweep) {
       const int before = state_.Irregular();
       // the angle allowance's count, exact again once per sweep (EditGuard::Recount)
-      if (opt_.angleAllowancePercent > 0) guard_.Recount();
+      RecountAngleAllowance();
       go = Stage(rep, 10 + 70 * sweep / opt_.maxSweeps, "Cancelling triples and quadruples") && Sweep(rep, travel);
       // Once per sweep, after the per-vertex strategies: the boundary stage.
-      if (opt_.angleAllowancePercent > 0) guard_.Recount();
+      RecountAngleAllowance();
       if (go && opt_.boundaryStage && !state_.Done()) rep.boundaryStage.Add(boundary.Run());
       if (!go || state_.Done()) break;
       const int removed = before - state_.Irregular();
@@ -209,7 +209,7 @@ class AutomaticReduction {
         travel = opt_.maxTravel;
       }
     }
-    if (opt_.angleAllowancePercent > 0) guard_.Recount();
+    RecountAngleAllowance();
     if (go && !state_.Done()) go = Meetings(rep);
     if (rep.interrupted) return;
     // Opt-in: what curvature or a thin part keeps, in fewer vertices (leftover_aggregation.h).
@@ -243,6 +243,12 @@ class AutomaticReduction {
     comp_.atomic().ReleaseScratch();
     transport_.ReleaseScratch();
     rep.hausdorffPercent = FinalRelax();
+  }
+
+  /// The angle allowance's count made exact again (EditGuard::Recount, O(F)): at the start and
+  /// between the stages, never per edit; nothing without an allowance.
+  void RecountAngleAllowance() {
+    if (opt_.angleAllowancePercent > 0) guard_.Recount();
   }
 
   /// One pass over the irregular vertices: local cancellations; with travel > 0 also pair

@@ -82,6 +82,7 @@ class EditGuard {
     }
     budget_ = 0.9 * opt_.hausdorffBudgetPercent / 100.0 * double(original.Diagonal());
     creaseBudget_ = opt_.creaseBudgetPercent / 100.0 * double(original.Diagonal());
+    boundCos_ = std::cos(opt_.minAngleDeg * M_PI / 180);
     BuildInputSamples(samplesPerEdge_ = opt_.hausdorffSamplesPerEdge);
   }
 
@@ -155,14 +156,13 @@ class EditGuard {
   /// allowance from the live face count: one O(F) pass, for the driver between sweeps, never
   /// per edit.
   void Recount() {
-    const double c = std::cos(opt_.minAngleDeg * M_PI / 180);
     long n = 0, faces = 0;
     underFlag_.assign(m_.face.size(), 0);
     for (size_t i = 0; i < m_.face.size(); ++i) {
       const FaceType& f = m_.face[i];
       if (f.IsD()) continue;
       ++faces;
-      n += underFlag_[i] = relax_detail::MaxCornerCos(&f) > c;
+      n += underFlag_[i] = UnderTheBound(f);
     }
     ForgetDirty();
     underBound_ = n;
@@ -787,6 +787,7 @@ class EditGuard {
   // the angle allowance (see the header)
   long underBound_ = 0;             ///< triangles under minAngleDeg, committed (the sum of underFlag_)
   long allowance_ = 0;              ///< the most the allowance lets there be (0: none)
+  double boundCos_ = 1;             ///< cos(minAngleDeg): a face is under the bound if its largest corner cosine is above
   std::vector<char> underFlag_;     ///< per face slot: under the bound as of the last commit
   std::vector<int> dirty_;          ///< face slots an edit in progress may have changed
   std::vector<char> dirtyMark_;     ///< per face slot: in dirty_
@@ -794,16 +795,19 @@ class EditGuard {
   /// How the dirty faces' count under the bound differs from their flags (a dead slot counts
   /// as not under); refresh: the flags take the current state.
   long DirtyChange(bool refresh = false) {
-    const double c = std::cos(opt_.minAngleDeg * M_PI / 180);
     if (underFlag_.size() < m_.face.size()) underFlag_.resize(m_.face.size(), 0);
     long d = 0;
     for (int i : dirty_) {
       const FaceType& f = m_.face[size_t(i)];
-      const char now = !f.IsD() && relax_detail::MaxCornerCos(&f) > c;
+      const char now = !f.IsD() && UnderTheBound(f);
       d += now - underFlag_[size_t(i)];
       if (refresh) underFlag_[size_t(i)] = now;
     }
     return d;
+  }
+  /// Has f an angle under minAngleDeg (its largest corner cosine over the bound's)?
+  bool UnderTheBound(const FaceType& f) const {
+    return relax_detail::MaxCornerCos(&f) > boundCos_;
   }
   void ForgetDirty() {
     for (int i : dirty_) dirtyMark_[size_t(i)] = 0;
