@@ -186,8 +186,9 @@ FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par
            "irregular count",
            rep.angleFlips, rep.angleFlipsTried, opt.anglePolishDeg);
   if (opt.aggregateLeftovers)
-    ctx.Logf("Aggregation: %d pairs of leftover v5 merged into a v4 and %d pairs of v7 into a v8 (%d pairs tried)",
-             rep.aggregatedV4, rep.aggregatedV8, rep.aggregationsTried);
+    ctx.Logf("Aggregation: %d pairs of leftover v5 merged into a v4 and %d pairs of v7 into a v8 (%d pairs tried); "
+             "%d of them first walked together (%d walks tried)",
+             rep.aggregatedV4, rep.aggregatedV8, rep.aggregationsTried, rep.gathered, rep.gathersTried);
   if (rep.thinRimLines > 0)
     ctx.Logf("Crease lines: %d rims of parts thinner than %.0f edge lengths were not kept sharp (the thin part keeps "
              "its shape within the Hausdorff budget)",
@@ -251,6 +252,8 @@ FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par
   out.SetInt("aggregated_v4", rep.aggregatedV4);
   out.SetInt("aggregated_v8", rep.aggregatedV8);
   out.SetInt("aggregations_tried", rep.aggregationsTried);
+  out.SetInt("aggregations_gathered", rep.gathered);
+  out.SetInt("gatherings_tried", rep.gathersTried);
   out.SetInt("thin_rim_lines", rep.thinRimLines);
   out.SetInt("travel", rep.travel);
   out.SetInt("undone", rep.undone);

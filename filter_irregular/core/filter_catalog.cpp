@@ -422,8 +422,10 @@ std::vector<FilterSpec> MakeCatalog() {
       Bool("aggregate", false, "Aggregate leftovers into v4/v8",
            "After the edits, two leftover v5 two edges apart (one regular vertex between them on a common "
            "neighbour) become one v4, and two v7 facing each other across an edge of two regular vertices become "
-           "one v8 (type aggregation, sec. 6.3), where the minimum angle and the Hausdorff budget still hold. The "
-           "curvature the surface needs stays, in fewer irregular vertices of higher valence. Off: the result keeps "
+           "one v8 (type aggregation, sec. 6.3), where the minimum angle and the Hausdorff budget still hold. A "
+           "leftover v5 (v7) with no such partner walks toward one of its type up to 16 edges away first (each step "
+           "a move with 5-7 pair generation, the pair carried off to a cancellation), and the two merge if they get "
+           "there. The curvature the surface needs stays, in fewer irregular vertices of higher valence. Off: the result keeps "
            "v5 and v7 only, as the paper's results do (a vertex whose split was refused keeps its valence)."),
       Colorize(),
   };

@@ -1958,3 +1958,81 @@ TEST(ReductionParts, AggregationMergesTheLeftoverPairsATypeSplitLeavesWhereTheyA
     EXPECT_TRUE(test::Snapshot(m) == snap);
   }
 }
+
+// Gathering (leftover_aggregation.h, ReductionOptions::gatherRadius): after a reduction, the
+// leftover v5 (v7) with a partner of their type a few edges away, but not in sec. 6.3's
+// configuration, walk together and aggregate. On the elephant remeshed to 4K (genus 3, its
+// leftovers spread over caps and saddles): each kept gathering lowers the count by exactly one
+// (the walk's generated pairs all cancel), the running count follows, the mesh stays a valid
+// 2-manifold with eq. 2, and each aggregate lies where two leftovers of its type stood within
+// the radius. With a Hausdorff budget no edit can meet, nothing changes, to the bit.
+TEST(ReductionParts, GatheringWalksLeftoversTogetherAndAggregatesThem) {
+  TMesh m;
+  std::unique_ptr<SurfaceProjector> input;
+  ASSERT_TRUE(RemeshedCorpus(m, "elephant.off", 4000, &input)) << "corpus mesh missing (run scripts/setup.sh)";
+  ASSERT_TRUE(AutomaticReduction<TMesh>(m, *input).Run());
+  vcg::tri::UpdateTopology<TMesh>::FaceFace(m);
+  vcg::tri::UpdateTopology<TMesh>::VertexFace(m);
+  const int radius = 12;
+  double edge = 0;  // the mean edge length (each interior edge counted twice)
+  for (const TMesh::FaceType& f : m.face)
+    for (int k = 0; k < 3; ++k) edge += double(vcg::Distance(f.cP(k), f.cP((k + 1) % 3))) / (3.0 * double(m.fn));
+  for (bool starved : {false, true}) {
+    TMesh c;
+    vcg::tri::Append<TMesh, TMesh>::MeshCopy(c, m, false, true);
+    vcg::tri::UpdateTopology<TMesh>::FaceFace(c);
+    vcg::tri::UpdateTopology<TMesh>::VertexFace(c);
+    std::vector<std::pair<int, TMesh::CoordType>> leftovers;  // (valence, position)
+    std::vector<int> valenceBefore(c.vert.size(), 0);
+    {
+      MeshEditor<TMesh> ed(c);
+      for (size_t i = 0; i < c.vert.size(); ++i)
+        if (ed.IsLive(int(i)) && !ed.IsBoundary(int(i)) && ed.Valence(int(i)) != 6) {
+          leftovers.push_back({ed.Valence(int(i)), c.vert[i].P()});
+          valenceBefore[i] = ed.Valence(int(i));
+        }
+    }
+    const test::MeshSnapshot snap = test::Snapshot(c);
+    ReductionOptions opt;
+    if (starved) opt.hausdorffBudgetPercent = 1e-7;
+    Parts p(c, *input, opt);
+    p.state.StartCount();
+    p.guard.Recount();
+    const int before = Recount(c);
+    ASSERT_EQ(p.state.Irregular(), before);
+    ReductionReport rep;
+    const AggregationReport ag = AggregateLeftovers(c, p.guard, rep, &p.transport, radius);
+    if (starved) {
+      EXPECT_EQ(ag.Kept(), 0);
+      EXPECT_GT(ag.gathersTried, 0);
+      EXPECT_TRUE(test::Snapshot(c) == snap) << "a refused gathering left the mesh changed";
+      continue;
+    }
+    EXPECT_GT(ag.gathered, 0) << "tried " << ag.gathersTried;
+    EXPECT_LE(ag.gathered, ag.Kept());
+    EXPECT_EQ(Recount(c), before - ag.Kept()) << "each aggregation removes one, each walk none";
+    EXPECT_EQ(p.state.Irregular(), Recount(c));
+    EXPECT_TRUE(test::AdjacencyEqualsRebuild(c));
+    const Result inv = CheckInvariants(c);
+    EXPECT_TRUE(inv.ok) << inv.reason;
+    // where they end up: each v4 (v8) lies near two leftover v5 (v7) of before, within the
+    // radius of each other (in edge lengths, with slack for the walk's relaxation)
+    MeshEditor<TMesh> ed(c);
+    int aggregates = 0;
+    for (size_t i = 0; i < c.vert.size(); ++i) {
+      if (!ed.IsLive(int(i)) || ed.IsBoundary(int(i))) continue;
+      const int d = ed.Valence(int(i));
+      if (d != 4 && d != 8) continue;
+      ++aggregates;
+      if (i < valenceBefore.size() && valenceBefore[i] == d) continue;  // a v4 (v8) of before
+      const int from = d == 4 ? 5 : 7;
+      int near = 0;
+      for (const auto& l : leftovers)
+        near += l.first == from && double(vcg::Distance(l.second, c.vert[i].P())) <= (radius + 2) * edge;
+      EXPECT_GE(near, 2) << "the v" << d << " at vertex " << i << " lies where no two v" << from << " stood";
+    }
+    const long earlier = std::count_if(leftovers.begin(), leftovers.end(),
+                                       [](const std::pair<int, TMesh::CoordType>& l) { return l.first == 4 || l.first == 8; });
+    EXPECT_EQ(aggregates, int(earlier) + ag.Kept());
+  }
+}

@@ -215,10 +215,13 @@ class AutomaticReduction {
     // Opt-in: what curvature or a thin part keeps, in fewer vertices (leftover_aggregation.h).
     // Before the polish and flips, which then work on the aggregates' triangles too.
     if (go && opt_.aggregateLeftovers && !state_.Done()) {
-      const AggregationReport ag = AggregateLeftovers(m_, guard_, rep);
+      RecountAngleAllowance();
+      const AggregationReport ag = AggregateLeftovers(m_, guard_, rep, &transport_, opt_.gatherRadius);
       rep.aggregatedV4 = ag.v4;
       rep.aggregatedV8 = ag.v8;
       rep.aggregationsTried = ag.tried;
+      rep.gathered = ag.gathered;
+      rep.gathersTried = ag.gathersTried;
     }
     // A stage after the sweeps (e.g. on the boundary) goes here: it runs even when the time
     // limit stopped the editing only if it is cheap; the final relaxation always does.

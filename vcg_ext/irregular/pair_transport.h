@@ -31,6 +31,8 @@ template <class MeshType>
 class PairTransport {
  public:
   typedef MeshEditor<MeshType> Editor;
+  /// Hops a walk with an accept test may take sideways (WalkToward), at most.
+  static constexpr int kMaxSidewaysHops = 2;
   typedef typename MeshType::CoordType CoordType;
   typedef std::function<AtomicOutcome(int, int)> PairStep;
 
@@ -104,52 +106,9 @@ class PairTransport {
     // in turn. So the closing check needs only these (it was a second pass over everything, a
     // tenth of the reduction's time on the bunny).
     std::vector<int> unjudged{v, w};
-    int cur = v;
-    for (int hop = 0; hop <= radius && !ed_.Adjacent(cur, w) && !state_.TurnExhausted(); ++hop) {
-      // the BFS from w stops at cur's layer: only the neighbours closer than cur matter
-      Distances(w, radius + 1, cur);
-      const int here = DistanceTo(cur) >= 0 ? DistanceTo(cur) : radius + 2;
-      const int d = ed_.Valence(cur);
-      int next = -1;
-      for (int k = 0; k < d && next < 0 && !state_.TurnExhausted(); ++k) {
-        // the neighbour the vertex moves to must be closer to w
-        const int to = ops_.NeighbourFrom(cur, -1, d == 5 ? k : k + 1);
-        if (to < 0 || DistanceTo(to) < 0 || DistanceTo(to) >= here) continue;
-        auto cp = ed_.Mark();
-        const size_t mark = touched.size(), unjudgedMark = unjudged.size();
-        AtomicOutcome gen = ops_.MoveWithPairGeneration(cur, k);
-        if (!gen) continue;
-        const std::vector<int> changed = state_.Record(gen, touched);
-        bool cuts = false;
-        {
-          const typename EditGuard<MeshType>::SameTopology sameTopology(guard_);  // one gathering for both
-          cuts = guard_.CutsCrease(changed);
-          if (!cuts) guard_.RelaxAround(changed);
-        }
-        if (cuts) {
-          touched.resize(mark);
-          ed_.RollbackTo(cp);
-          continue;
-        }
-        unjudged.insert(unjudged.end(), changed.begin(), changed.end());
-        const int moved = gen.irregular[0];
-        int p5 = gen.irregular[1], p7 = gen.irregular[2];
-        if (ed_.Valence(p5) != 5) std::swap(p5, p7);
-        // a removal of the generated pair against the moved vertex would only undo the step
-        cancel_.exclude = {moved, w};
-        const bool away = Transport(rep, p5, p7, innerTravel, &touched);
-        cancel_.exclude.clear();
-        if (away) {
-          next = moved;
-        } else {
-          touched.resize(mark);
-          unjudged.resize(unjudgedMark);
-          ed_.RollbackTo(cp);
-        }
-      }
-      if (next < 0) break;
-      cur = next;
-    }
+    WalkRules rules;
+    rules.arrived = [&](int c, int target) { return ed_.Adjacent(c, target); };
+    const int cur = WalkToward(rep, v, w, radius, innerTravel, touched, unjudged, rules);
     if (!state_.TurnExhausted() && ed_.IsLive(cur) && ed_.IsLive(w) && ed_.Adjacent(cur, w) &&
         ed_.Valence(cur) + ed_.Valence(w) == 12) {
       const int a5 = ed_.Valence(cur) == 5 ? cur : w, a7 = a5 == cur ? w : cur;
@@ -168,16 +127,116 @@ class PairTransport {
       ++rep.partialAbsorptions;
       return true;
     }
-    // the report goes back to before the attempt, but keeps what the guard refused in it
-    const int angle = rep.undoneAngle, hausdorff = rep.undoneHausdorff, frozen = rep.undoneFrozen,
-              boundary = rep.undoneBoundary;
-    rep = saved;
-    rep.undoneAngle = angle, rep.undoneHausdorff = hausdorff, rep.undoneFrozen = frozen, rep.undoneBoundary = boundary;
+    rep.RestoreKeepingRefusals(saved);
     // an attempt that edited and is undone whole counts against the region's bound (unless the
     // bound is what stopped it: then the refusal that reached it was counted already)
     if (touched.size() > 2 && !state_.TurnExhausted()) state_.Refused(Refusal::NoCancellation);
     g.Undo();
     return false;
+  }
+
+  /// One hop of a walk: cur moves to a neighbour (direction k, as MoveWithPairGeneration) by a
+  /// move with 5-7 pair generation (sec. 6.2), relaxed around. False (nothing changed) where
+  /// the move is not possible or would cut a crease. What it changed is appended to `touched`
+  /// and `unjudged`; gen gets the outcome (irregular: the moved vertex, then the pair).
+  bool Hop(int cur, int k, std::vector<int>& touched, std::vector<int>& unjudged, AtomicOutcome& gen) {
+    auto cp = ed_.Mark();
+    const size_t mark = touched.size();
+    gen = ops_.MoveWithPairGeneration(cur, k);
+    if (!gen) return false;
+    const std::vector<int> changed = state_.Record(gen, touched);
+    bool cuts = false;
+    {
+      const typename EditGuard<MeshType>::SameTopology sameTopology(guard_);  // one gathering for both
+      cuts = guard_.CutsCrease(changed);
+      if (!cuts) guard_.RelaxAround(changed);
+    }
+    if (cuts) {
+      touched.resize(mark);
+      ed_.RollbackTo(cp);
+      return false;
+    }
+    unjudged.insert(unjudged.end(), changed.begin(), changed.end());
+    return true;
+  }
+
+  /// The directions (k, as Hop) in which cur's hop lands at `distance` from the vertex of the
+  /// last Distances call, in increasing k; `avoid` excluded.
+  std::vector<int> HopsTo(int cur, int distance, int avoid = -1) {
+    std::vector<int> ks;
+    const int d = ed_.Valence(cur);
+    for (int k = 0; k < d; ++k) {
+      const int to = ops_.NeighbourFrom(cur, -1, d == 5 ? k : k + 1);
+      if (to >= 0 && to != avoid && DistanceTo(to) == distance) ks.push_back(k);
+    }
+    return ks;
+  }
+
+  /// How a walk ends and what it may do (WalkToward).
+  struct WalkRules {
+    std::function<bool(int, int)> arrived;  ///< (where v is, where w is): stop there
+    std::function<bool(int, int)> accept;   ///< a hop is kept only where this holds (null: any);
+                                            ///< with it, up to kMaxSidewaysHops hops may keep the distance
+  };
+
+  /// v walks toward w (sec. 6.2, 7.2): each hop moves v to a neighbour closer to w (graph
+  /// distance, within radius + 1) by a move with 5-7 pair generation (Hop), and transports the
+  /// generated pair away (innerTravel) until it cancels against neither v nor w; a hop whose
+  /// pair finds no cancellation is rolled back and the next direction tried.
+  /// Stops when
+  /// rules.arrived holds, after radius + 1 hops, when no direction is kept, or when the turn's
+  /// effort is spent. Returns where v ended (its index after the moves). What the hops changed is appended to `touched`; what no inner guard judged
+  /// (the moves and their relaxation) to `unjudged`. No guard of its own: the caller's
+  /// GuardedEdit keeps or undoes the walk as a whole.
+  int WalkToward(ReductionReport& rep, int v, int w, int radius, int innerTravel, std::vector<int>& touched,
+                 std::vector<int>& unjudged, const WalkRules& rules) {
+    int cur = v, last = -1, sideways = 0;
+    for (int hop = 0; hop <= radius && !rules.arrived(cur, w) && !state_.TurnExhausted(); ++hop) {
+      // the BFS from w stops at cur's layer: only the neighbours closer than cur matter
+      Distances(w, radius + 1, cur);
+      const int here = DistanceTo(cur) >= 0 ? DistanceTo(cur) : radius + 2;
+      // with an accept test, a hop that stays as far from w may follow when no closer one is
+      // accepted (a gathering two or three edges from its partner, on the wrong side of it)
+      std::vector<int> closer = HopsTo(cur, here - 1), aside;
+      if (rules.accept && sideways < kMaxSidewaysHops) aside = HopsTo(cur, here, last);
+      const size_t nCloser = closer.size();
+      closer.insert(closer.end(), aside.begin(), aside.end());
+      int next = -1;
+      for (size_t i = 0; i < closer.size() && next < 0 && !state_.TurnExhausted(); ++i) {
+        const int k = closer[i];
+        auto cp = ed_.Mark();
+        const size_t mark = touched.size(), unjudgedMark = unjudged.size();
+        AtomicOutcome gen;
+        if (!Hop(cur, k, touched, unjudged, gen)) continue;
+        const int moved = gen.irregular[0];
+        int p5 = gen.irregular[1], p7 = gen.irregular[2];
+        if (ed_.Valence(p5) != 5) std::swap(p5, p7);
+        ReductionReport beforeTransport;  // only a walk with an accept test may give a kept hop back
+        if (rules.accept) beforeTransport = rep;
+        // a removal of the generated pair against the moved vertex would only undo the step
+        cancel_.exclude = {moved, w};
+        bool away = Transport(rep, p5, p7, innerTravel, &touched);
+        cancel_.exclude.clear();
+        if (away && rules.accept && !rules.accept(moved, w)) {
+          // where the hop led is no place for the caller (a gathering's overshoot): as if the
+          // hop had not been tried, but for the refusals counted on the way
+          rep.RestoreKeepingRefusals(beforeTransport);
+          away = false;
+        }
+        if (away) {
+          next = moved;
+          if (i >= nCloser) ++sideways;
+        } else {
+          touched.resize(mark);
+          unjudged.resize(unjudgedMark);
+          ed_.RollbackTo(cp);
+        }
+      }
+      if (next < 0) break;
+      last = cur;
+      cur = next;
+    }
+    return cur;
   }
 
   /// The pair step (one of the six of sec. 6.2) after which the pair's midpoint is closest to
@@ -249,6 +308,34 @@ class PairTransport {
     }
     if (bestDir < 0) return AtomicOutcome();
     return ops_.MovePair57(v5, v7, bestDir);
+  }
+
+  /// Irregular vertices (not in `from`) within `radius` edges of `from`, nearest first (a
+  /// breadth-first search, each vertex's neighbours by index). Layer by layer over reused
+  /// buffers, with a stamp set for "seen": no allocation per call but the result.
+  std::vector<int> NearestIrregular(const std::vector<int>& from, int radius, int count, int valence = 0) {
+    std::vector<int> found;
+    seen_.Begin(m_.vert.size());
+    layer_.assign(from.begin(), from.end());
+    for (int v : from) seen_.Insert(size_t(v));
+    for (int r = 0; r < radius && !layer_.empty() && int(found.size()) < count; ++r) {
+      nextLayer_.clear();
+      for (size_t i = 0; i < layer_.size() && int(found.size()) < count; ++i) {
+        VertexStar<MeshType> s = ed_.Star(layer_[i]);
+        ring_.clear();
+        for (auto* nb : s.neighbors) ring_.push_back(ed_.Index(nb));
+        std::sort(ring_.begin(), ring_.end());  // deterministic order
+        for (int w : ring_) {
+          if (!seen_.Insert(size_t(w))) continue;
+          nextLayer_.push_back(w);
+          if (state_.IsInteriorIrregular(w) && !state_.Frozen(w) && (valence == 0 || ed_.Valence(w) == valence) &&
+              int(found.size()) < count)
+            found.push_back(w);
+        }
+      }
+      layer_.swap(nextLayer_);
+    }
+    return found;
   }
 
  private:
@@ -443,34 +530,7 @@ class PairTransport {
     return false;
   }
 
-  /// Irregular vertices (not in `from`) within `radius` edges of `from`, nearest first (a
-  /// breadth-first search, each vertex's neighbours by index). Layer by layer over reused
-  /// buffers, with a stamp set for "seen": no allocation per call but the result.
-  std::vector<int> NearestIrregular(const std::vector<int>& from, int radius, int count, int valence = 0) {
-    std::vector<int> found;
-    seen_.Begin(m_.vert.size());
-    layer_.assign(from.begin(), from.end());
-    for (int v : from) seen_.Insert(size_t(v));
-    for (int r = 0; r < radius && !layer_.empty() && int(found.size()) < count; ++r) {
-      nextLayer_.clear();
-      for (size_t i = 0; i < layer_.size() && int(found.size()) < count; ++i) {
-        VertexStar<MeshType> s = ed_.Star(layer_[i]);
-        ring_.clear();
-        for (auto* nb : s.neighbors) ring_.push_back(ed_.Index(nb));
-        std::sort(ring_.begin(), ring_.end());  // deterministic order
-        for (int w : ring_) {
-          if (!seen_.Insert(size_t(w))) continue;
-          nextLayer_.push_back(w);
-          if (state_.IsInteriorIrregular(w) && !state_.Frozen(w) && (valence == 0 || ed_.Valence(w) == valence) &&
-              int(found.size()) < count)
-            found.push_back(w);
-        }
-      }
-      layer_.swap(nextLayer_);
-    }
-    return found;
-  }
-
+ public:
   /// Graph distances from v, up to radius, read with DistanceTo until the next call; with
   /// stopAt >= 0, only up to stopAt's layer (every vertex closer to v than stopAt is in, and
   /// stopAt itself). A stamp per vertex instead of a hash map (0.9.19: its inserts were 1.6% of
@@ -495,11 +555,13 @@ class PairTransport {
       distLayer_.swap(distNext_);
     }
   }
+ public:
   /// The last Distances call's distance to x; -1 if x was not reached.
   int DistanceTo(int x) const {
     return x >= 0 && size_t(x) < distOf_.size() && distSeen_.Contains(size_t(x)) ? distOf_[size_t(x)] : -1;
   }
 
+ private:
   MeshType& m_;
   const ReductionOptions& opt_;
   Editor& ed_;
