@@ -265,8 +265,8 @@ def test_aggregation_merges_leftover_pairs_where_they_were():
     vertices): the run is the default one up to its last stage, which merges two leftover v5
     into a v4 and two v7 into a v8 (sec. 6.3) where the guard passes it, after walking a leftover
     toward a partner of its type up to 16 edges away when none stands in the configuration
-    (gathering, 0.9.31). Measured: 160 interior irregular vertices left without, 107 with (17 v4
-    and 36 v8 of 97 pairs tried, 42 of them gathered in 143 walks; 150 before gathering). Each
+    (gathering, 0.9.31). Measured: 160 interior irregular vertices left without, 110 with (13 v4
+    and 35 v8 of 95 pairs tried, 37 of them gathered in 134 walks; 150 before gathering). Each
     new v4 (v8) lies where the default run left two v5 (v7) near each other, and the curvature
     they stand for is kept (genus 3: the sum of 6 - valence stays -24)."""
     runs = {}

@@ -23,7 +23,7 @@
 // the nearest of the same type 3 or 4 edges away for 22, within 12 for most). Such a leftover
 // walks toward a partner (PairTransport::WalkToward: each hop a move with 5-7 pair generation,
 // sec. 6.2, the pair carried off to a cancellation, sec. 7.2), landing two edges from it only in
-// the configuration, and the two merge. The elephant: 90 left with aggregation alone, 63 with
+// the configuration, and the two merge. The elephant: 90 left with aggregation alone, 60 with
 // gathering (radius 16; native bench, 0.9.31).
 //
 // An aggregation is kept only if it passes the edit guard (edit_guard.h: Hausdorff, crease,
@@ -179,6 +179,17 @@ std::pair<int, int> PartnerEntry(MeshEditor<MeshType>& ed, const ReductionState<
   return {-1, -1};
 }
 
+/// How far a gathering's generated pairs are transported toward the nearest irregular vertices
+/// before they glide, in units of the run's travel (maxTravel, scaled to the mesh). The leftovers
+/// are sparse: the elephant at 20K kept 63 with no transport toward a target (the pairs only
+/// glided), 61 with 1 travel, 60 with 2, 3 or 4 (native bench, 0.9.31).
+constexpr int kGatherTravelScale = 2;
+
+template <class MeshType>
+int GatherTravel(EditGuard<MeshType>& guard) {
+  return kGatherTravelScale * std::max(1, guard.options().maxTravel);
+}
+
 /// Gathering (ReductionOptions::gatherRadius): a leftover v5 / v7 `a` with no partner in an
 /// aggregation's configuration walks toward b, a vertex of its type within `radius` edges (PairTransport::WalkToward: each step a move with 5-7 pair generation, sec. 6.2, the
 /// generated pair transported away to a cancellation, sec. 7.2), until b is its partner; then
@@ -219,13 +230,13 @@ bool GatherPair(MeshType& m, EditGuard<MeshType>& guard, PairTransport<MeshType>
                  : std::pair<int, int>(-1, -1);
     };
     int other = b;
-    int cur = transport.WalkToward(rep, a, other, radius, 0, touched, unjudged, rules);
+    int cur = transport.WalkToward(rep, a, other, radius, GatherTravel(guard), touched, unjudged, rules);
     std::pair<int, int> partner = partnerOf(cur, other);
     // a stopped short (no hop closer it could keep): the partner walks the rest toward a
     if (partner.first < 0 && ed.IsLive(cur) && ed.IsLive(other) && ed.Valence(cur) == valence &&
         ed.Valence(other) == valence && !ed.Adjacent(cur, other) && !state.TurnExhausted()) {
       std::swap(cur, other);
-      cur = transport.WalkToward(rep, cur, other, radius, 0, touched, unjudged, rules);
+      cur = transport.WalkToward(rep, cur, other, radius, GatherTravel(guard), touched, unjudged, rules);
       partner = partnerOf(cur, other);
     }
     const bool walked = touched.size() > 2;

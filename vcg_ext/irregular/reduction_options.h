@@ -207,8 +207,9 @@ struct ReductionOptions {
                                         ///< one of its type within this many edges (the 3 nearest in turn), each
                                         ///< step's generated 5-7 pair transported away (leftover_aggregation.h),
                                         ///< and the two aggregate if they get there; 0: no gathering. Native
-                                        ///< bench, 8 models at 20K: 8, 12, 16 edges leave 1445, 1441, 1433 in all
-                                        ///< (the elephant 68, 69, 63; without gathering 90)
+                                        ///< bench, 8 models at 20K (the pairs' travel kGatherTravelScale): 12 and
+                                        ///< 16 edges leave 1418 and 1409 in all (the elephant 63 and 60; without
+                                        ///< gathering 90)
   bool reuseDeadSlots = true;           ///< default true: a split takes the slot of a vertex or face a kept edit
                                         ///< deleted before it appends one (slot_pool.h), so the vectors grow by
                                         ///< what the run adds, not by what it adds and deletes (bunny00 subdivided
