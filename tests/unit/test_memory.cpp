@@ -3,6 +3,7 @@
 // ReserveRoom gives the mesh room without breaking a pointer, and HausdorffPercent's grid of
 // the edited mesh measures what a SurfaceProjector copy measured, to the bit. No test here
 // reads the clock or the resident size: each checks a count or an equality.
+#include <cstring>
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -61,6 +62,20 @@ double HausdorffPercentByProjectorCopy(const MeshT& edited, const SurfaceProject
   const double ab = OneSidedHausdorff(edited, original);
   const double ba = OneSidedHausdorff(original.Mesh(), editedSurface);
   return 100.0 * std::max(ab, ba) / original.Diagonal();
+}
+
+/// A snapshot's bytes per vertex of TMesh: position, flags, colour, quality.
+constexpr size_t kVertexBytes = sizeof(TMesh::CoordType) + sizeof(int) + sizeof(vcg::Color4b) +
+                                sizeof(TMesh::VertexType::QualityType);
+
+std::vector<TMesh::FaceType::NormalType> FaceNormals(const TMesh& m) {
+  std::vector<TMesh::FaceType::NormalType> n;
+  for (auto& f : m.face) n.push_back(f.cN());
+  return n;
+}
+
+bool SameBits(const std::vector<TMesh::FaceType::NormalType>& a, const std::vector<TMesh::FaceType::NormalType>& b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0);
 }
 
 bool Remeshed(TMesh& m, const char* name, int n) {
@@ -128,15 +143,22 @@ TEST(MemorySnapshot, RestoresEveryFieldAfterManyEditsAndIsCompact) {
   ASSERT_TRUE(Remeshed(m, "bunny00.off", 3000)) << "corpus mesh missing (run scripts/setup.sh)";
   const test::MeshSnapshot before = test::Snapshot(m);
   const size_t nv = m.vert.size(), nf = m.face.size();
+  const std::vector<TMesh::FaceType::NormalType> normals = FaceNormals(m);
   CompactSnapshot<TMesh> snap;
   snap.Take(m);
-  // float coordinates: at most 64 bytes a face and 28 a vertex (the journal's records: 104 and 48)
-  EXPECT_LE(snap.Bytes(), 64 * nf + 28 * nv);
+  // 16 bytes a face (vertices, flags) and per vertex its position, flags, colour and quality
+  // (28 with float coordinates); VF, FF and the normals come back from them (the journal's
+  // records: 104 and 48)
+  EXPECT_EQ(snap.StoredVF(), 0u);
+  EXPECT_EQ(snap.StoredNormals(), 0u);
+  EXPECT_EQ(snap.StoredFF(), 0u);
+  EXPECT_LE(snap.Bytes(), 16 * nf + kVertexBytes * nv);
   EXPECT_GT(RandomEdits(m, 300, 11), 200);
   ASSERT_NE(m.vert.size(), nv);  // splits added vertices
   ASSERT_TRUE(CheckInvariants(m).ok);
   snap.Restore(m);
   EXPECT_TRUE(test::Snapshot(m) == before);
+  EXPECT_TRUE(SameBits(FaceNormals(m), normals));
   EXPECT_EQ(m.vert.size(), nv);
   EXPECT_EQ(m.face.size(), nf);
   ASSERT_TRUE(CheckInvariants(m).ok);
@@ -181,7 +203,7 @@ TEST(MemorySnapshot, GivesFFBackFromTheVFListsAndStoresOnlyWhatTheyDoNotGive) {
   CompactSnapshot<TMesh> c;
   c.Take(closed);
   EXPECT_EQ(c.StoredFF(), 0u);
-  EXPECT_LE(c.Bytes(), 48 * closed.face.size() + 28 * closed.vert.size());
+  EXPECT_LE(c.Bytes(), 16 * closed.face.size() + kVertexBytes * closed.vert.size());
   // a patch with a border, holes left by edits (deleted faces keep whatever FF they had), and
   // one live face whose FF a bug elsewhere left wrong: each is given back as it was
   TMesh m;
@@ -198,14 +220,57 @@ TEST(MemorySnapshot, GivesFFBackFromTheVFListsAndStoresOnlyWhatTheyDoNotGive) {
   odd->FFp(1) = odd;  // a border edge 2 that is not there
   odd->FFi(1) = 2;
   const test::MeshSnapshot before = test::Snapshot(m);
+  const std::vector<TMesh::FaceType::NormalType> normals = FaceNormals(m);
   CompactSnapshot<TMesh> snap;
   snap.Take(m);
   EXPECT_EQ(snap.StoredFF(), size_t(deleted) + 1);
+  // the edits kept VF lists in their own order, and deleted faces keep whatever they had
+  EXPECT_GE(snap.StoredVF(), size_t(deleted));
   odd->FFp(1) = across;  // valid again for the edits
   odd->FFi(1) = acrossEdge;
   EXPECT_GT(RandomEdits(m, 200, 29), 100);
   snap.Restore(m);
   EXPECT_TRUE(test::Snapshot(m) == before);
+  EXPECT_TRUE(SameBits(FaceNormals(m), normals));
+}
+
+TEST(MemorySnapshot, GivesVFAndNormalsBackFromTheFacesAndStoresOnlyWhatTheyDoNotGive) {
+  TMesh m;
+  ASSERT_TRUE(Remeshed(m, "bunny00.off", 2000)) << "corpus mesh missing (run scripts/setup.sh)";
+  // normals by vcg's rule that does not normalize (PerVertexNormalizedPerFace leaves them so),
+  // but a few set by hand; the VF lists rebuilt in vcg's order, but one vertex's list
+  // re-headed (a list edited since)
+  vcg::tri::UpdateNormal<TMesh>::PerFace(m);
+  const int odd[] = {3, 50, 51, 700};
+  for (int i : odd) m.face[size_t(i)].N() = vcg::Point3f(0.25f * float(i), 1, -2);
+  TMesh::VertexType& v = *m.face[10].V(1);
+  vcg::face::VFIterator<TMesh::FaceType> second(&v);
+  ++second;
+  ASSERT_FALSE(second.End());
+  TMesh::FaceType* const head = v.VFp();
+  const int headZ = v.VFi();
+  // move the head after the second: v -> second -> head -> rest
+  TMesh::FaceType* const rest = head->VFp(headZ);
+  const int restZ = head->VFi(headZ);
+  ASSERT_EQ(rest, second.F());
+  head->VFp(headZ) = rest->VFp(restZ);
+  head->VFi(headZ) = rest->VFi(restZ);
+  rest->VFp(restZ) = head;
+  rest->VFi(restZ) = char(headZ);
+  v.VFp() = rest;
+  v.VFi() = restZ;
+  const test::MeshSnapshot before = test::Snapshot(m);
+  const std::vector<TMesh::FaceType::NormalType> normals = FaceNormals(m);
+  CompactSnapshot<TMesh> snap;
+  snap.Take(m);
+  EXPECT_EQ(snap.StoredNormals(), 4u);
+  EXPECT_EQ(snap.StoredVF(), 3u);  // the vertex, the two faces whose links changed
+  EXPECT_GT(RandomEdits(m, 300, 31), 200);
+  for (auto& f : m.face) f.N() = vcg::Point3f(7, 7, 7);
+  snap.Restore(m);
+  EXPECT_TRUE(test::Snapshot(m) == before);
+  EXPECT_TRUE(SameBits(FaceNormals(m), normals));
+  ASSERT_TRUE(CheckInvariants(m).ok);
 }
 
 // ------------------------------------------------------------------------------- room
