@@ -30,6 +30,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <memory>
 #include <string>
 #include <vector>
@@ -192,9 +193,11 @@ int main(int argc, char** argv) {
           *lastPct = pct;
           // the vectors' sizes and capacities: a vector that outgrows its room is copied whole
           const HeapMiB h = Heap();
-          std::printf("  memory: %-45s %3d%% rss %7.1f MiB, peak %7.1f MiB; heap used %7.1f, freed %6.1f MiB; "
-                      "vert %zu/%zu (%d live), face %zu/%zu\n", what, pct, StatusMiB("VmRSS"), StatusMiB("VmHWM"), h.used,
-                      h.freed, m.vert.size(), m.vert.capacity(), m.vn, m.face.size(), m.face.capacity());
+          // the process's CPU time so far: where a stage's time goes
+          std::printf("  memory: %-45s %3d%% cpu %7.2f s, rss %7.1f MiB, peak %7.1f MiB; heap used %7.1f, freed %6.1f MiB; "
+                      "vert %zu/%zu (%d live), face %zu/%zu\n", what, pct, double(std::clock()) / CLOCKS_PER_SEC,
+                      StatusMiB("VmRSS"), StatusMiB("VmHWM"), h.used, h.freed, m.vert.size(), m.vert.capacity(), m.vn,
+                      m.face.size(), m.face.capacity());
           std::fflush(stdout);
         }
         return true;
