@@ -322,13 +322,15 @@ AggregationReport AggregateLeftovers(MeshType& m, EditGuard<MeshType>& guard, Re
       if (!ed.IsLive(a) || !state.IsInteriorIrregular(a) || state.Frozen(a)) continue;
       const int valence = ed.Valence(a);
       if (valence != 5 && valence != 7) continue;
+      // a refused aggregation is rolled back whole, so the partners stay those found here
+      const std::vector<std::pair<int, int>> partners = AggregationPartners(ed, state, a);
       bool done = false;
-      for (const std::pair<int, int>& partner : AggregationPartners(ed, state, a))
+      for (const std::pair<int, int>& partner : partners)
         if (TryAggregation(m, guard, tc, rep, a, partner, out, true)) {
           done = true;
           break;
         }
-      if (!done && AggregationPartners(ed, state, a).empty()) Gather(m, guard, *transport, tc, rep, a, gatherRadius, out);
+      if (!done && partners.empty()) Gather(m, guard, *transport, tc, rep, a, gatherRadius, out);
     }
     if (out.gathered == before) break;
   }
