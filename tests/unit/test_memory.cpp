@@ -68,16 +68,6 @@ double HausdorffPercentByProjectorCopy(const MeshT& edited, const SurfaceProject
 constexpr size_t kVertexBytes = sizeof(TMesh::CoordType) + sizeof(int) + sizeof(vcg::Color4b) +
                                 sizeof(TMesh::VertexType::QualityType);
 
-std::vector<TMesh::FaceType::NormalType> FaceNormals(const TMesh& m) {
-  std::vector<TMesh::FaceType::NormalType> n;
-  for (auto& f : m.face) n.push_back(f.cN());
-  return n;
-}
-
-bool SameBits(const std::vector<TMesh::FaceType::NormalType>& a, const std::vector<TMesh::FaceType::NormalType>& b) {
-  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0);
-}
-
 bool Remeshed(TMesh& m, const char* name, int n) {
   if (!test::LoadCorpus(m, name)) return false;
   RemeshOptions ro;
@@ -143,7 +133,7 @@ TEST(MemorySnapshot, RestoresEveryFieldAfterManyEditsAndIsCompact) {
   ASSERT_TRUE(Remeshed(m, "bunny00.off", 3000)) << "corpus mesh missing (run scripts/setup.sh)";
   const test::MeshSnapshot before = test::Snapshot(m);
   const size_t nv = m.vert.size(), nf = m.face.size();
-  const std::vector<TMesh::FaceType::NormalType> normals = FaceNormals(m);
+  const std::vector<unsigned char> normals = test::FaceNormalBits(m);
   CompactSnapshot<TMesh> snap;
   snap.Take(m);
   // 16 bytes a face (vertices, flags) and per vertex its position, flags, colour and quality
@@ -158,7 +148,7 @@ TEST(MemorySnapshot, RestoresEveryFieldAfterManyEditsAndIsCompact) {
   ASSERT_TRUE(CheckInvariants(m).ok);
   snap.Restore(m);
   EXPECT_TRUE(test::Snapshot(m) == before);
-  EXPECT_TRUE(SameBits(FaceNormals(m), normals));
+  EXPECT_TRUE(test::FaceNormalBits(m) == normals);
   EXPECT_EQ(m.vert.size(), nv);
   EXPECT_EQ(m.face.size(), nf);
   ASSERT_TRUE(CheckInvariants(m).ok);
@@ -220,7 +210,7 @@ TEST(MemorySnapshot, GivesFFBackFromTheVFListsAndStoresOnlyWhatTheyDoNotGive) {
   odd->FFp(1) = odd;  // a border edge 2 that is not there
   odd->FFi(1) = 2;
   const test::MeshSnapshot before = test::Snapshot(m);
-  const std::vector<TMesh::FaceType::NormalType> normals = FaceNormals(m);
+  const std::vector<unsigned char> normals = test::FaceNormalBits(m);
   CompactSnapshot<TMesh> snap;
   snap.Take(m);
   EXPECT_EQ(snap.StoredFF(), size_t(deleted) + 1);
@@ -231,7 +221,7 @@ TEST(MemorySnapshot, GivesFFBackFromTheVFListsAndStoresOnlyWhatTheyDoNotGive) {
   EXPECT_GT(RandomEdits(m, 200, 29), 100);
   snap.Restore(m);
   EXPECT_TRUE(test::Snapshot(m) == before);
-  EXPECT_TRUE(SameBits(FaceNormals(m), normals));
+  EXPECT_TRUE(test::FaceNormalBits(m) == normals);
 }
 
 TEST(MemorySnapshot, GivesVFAndNormalsBackFromTheFacesAndStoresOnlyWhatTheyDoNotGive) {
@@ -260,7 +250,7 @@ TEST(MemorySnapshot, GivesVFAndNormalsBackFromTheFacesAndStoresOnlyWhatTheyDoNot
   v.VFp() = rest;
   v.VFi() = restZ;
   const test::MeshSnapshot before = test::Snapshot(m);
-  const std::vector<TMesh::FaceType::NormalType> normals = FaceNormals(m);
+  const std::vector<unsigned char> normals = test::FaceNormalBits(m);
   CompactSnapshot<TMesh> snap;
   snap.Take(m);
   EXPECT_EQ(snap.StoredNormals(), 4u);
@@ -269,7 +259,7 @@ TEST(MemorySnapshot, GivesVFAndNormalsBackFromTheFacesAndStoresOnlyWhatTheyDoNot
   for (auto& f : m.face) f.N() = vcg::Point3f(7, 7, 7);
   snap.Restore(m);
   EXPECT_TRUE(test::Snapshot(m) == before);
-  EXPECT_TRUE(SameBits(FaceNormals(m), normals));
+  EXPECT_TRUE(test::FaceNormalBits(m) == normals);
   ASSERT_TRUE(CheckInvariants(m).ok);
 }
 

@@ -1,6 +1,7 @@
 // Helpers for vcg_ext unit tests: valences by index, exact mesh snapshots, adjacency vs rebuild.
 #pragma once
 
+#include <cstring>
 #include <algorithm>
 #include <array>
 #include <tuple>
@@ -50,6 +51,16 @@ inline MeshSnapshot Snapshot(TMesh& m) {
     s.faces.push_back(r);
   }
   return s;
+}
+
+/// Every face normal's bytes, by face index: an undo gives them back bit for bit.
+inline std::vector<unsigned char> FaceNormalBits(const TMesh& m) {
+  std::vector<unsigned char> bits(m.face.size() * sizeof(TMesh::FaceType::NormalType));
+  for (size_t i = 0; i < m.face.size(); ++i) {
+    const TMesh::FaceType::NormalType n = m.face[i].cN();
+    std::memcpy(&bits[i * sizeof(n)], &n, sizeof(n));
+  }
+  return bits;
 }
 
 /// FF adjacency maintained locally equals vcg's full rebuild (FF is unique on a manifold mesh).
