@@ -4,11 +4,12 @@
 // the input that undoes a whole run. Everything here costs O(touched) per edit; only
 // StartCount() and the snapshot are O(mesh), once per run.
 //
-// Memory: the snapshot is compact (mesh_snapshot.h: ~60 bytes per face, ~24 per vertex), and
-// TakeSnapshot gives the mesh's vectors room for the run's new elements (ReserveRoom), so that
-// a split does not double them (std::vector's growth: the old and the new vector resident at
-// once, ~200 MB on a million-face CMeshO with its optional adjacency). The run ends with
-// CompactKeepingAdjacency, which does not rebuild FF.
+// Memory: the snapshot is compact (mesh_snapshot.h: 16 bytes per face, a vertex its position
+// and flags; VF, FF and normals rebuilt from them), and TakeSnapshot gives the mesh's vectors
+// room for the run's new elements (ReserveRoom), so that a split does not double them
+// (std::vector's growth: the old and the new vector resident at once, ~200 MB on a
+// million-face CMeshO with its optional adjacency). The run ends with CompactKeepingAdjacency,
+// which does not rebuild FF.
 #pragma once
 
 #include <algorithm>
