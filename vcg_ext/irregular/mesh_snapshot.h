@@ -24,9 +24,10 @@
 // keep theirs in lists of exceptions. At 1.2M faces of MeshLab's CMeshO (double coordinates
 // and normals) this is 19 MB of faces instead of 67 (0.9.31 stored VF and the normal per face).
 //
-// Preconditions: the mesh has FF and VF adjacency (as every edit of the project needs), fewer
-// than 2^31 elements. Restore() then leaves every saved field as Take() saw it, the vectors at
-// their sizes then, and nothing else changed (elements added since are truncated).
+// Preconditions: the mesh has FF and VF adjacency (as every edit of the project needs), its
+// live faces have their three vertices, fewer than 2^31 elements. Restore() then leaves every
+// saved field as Take() saw it, the vectors at their sizes then, and nothing else changed
+// (elements added since are truncated).
 // Costs: O(V + F) memory, O(V + F * valence) time per Take / Restore, nothing per edit.
 #pragma once
 
@@ -35,6 +36,7 @@
 #include <vector>
 
 #include <vcg/complex/complex.h>
+#include <vcg/complex/algorithms/update/topology.h>
 
 namespace vcg_ext {
 namespace irregular {
@@ -106,11 +108,8 @@ class CompactSnapshot {
     if (m.vert.size() != nv_) m.vert.resize(nv_);
     if (m.face.size() != nf_) m.face.resize(nf_);
     for (size_t i = 0; i < nv_; ++i) {
-      VertexType& v = m.vert[i];
-      v.P() = pos_[i];
-      v.Flags() = vertFlags_[i];
-      v.VFp() = nullptr;  // rebuilt below
-      v.VFi() = 0;
+      m.vert[i].P() = pos_[i];
+      m.vert[i].Flags() = vertFlags_[i];
     }
     for (size_t i = 0; i < nf_; ++i) {
       FaceType& f = m.face[i];
@@ -118,19 +117,8 @@ class CompactSnapshot {
       for (int z = 0; z < 3; ++z) f.V(z) = s.v[z] < 0 ? nullptr : &m.vert[size_t(s.v[z])];
       f.Flags() = s.flags;
     }
-    // VF as vcg's rebuild makes it (each live face, in order, at the head of its corners'
-    // lists; TakeVF predicts the same), then the exceptions
-    for (size_t i = 0; i < nf_; ++i) {
-      FaceType& f = m.face[i];
-      if (!Rebuilt(f)) continue;
-      for (int z = 0; z < 3; ++z) {
-        VertexType* v = f.V(z);
-        f.VFp(z) = v->VFp();
-        f.VFi(z) = v->VFi();
-        v->VFp() = &f;
-        v->VFi() = z;
-      }
-    }
+    // VF by vcg's rebuild (TakeVF predicted it), then the exceptions
+    vcg::tri::UpdateTopology<MeshType>::VertexFace(m);
     for (const VertexVF& e : vertVF_) {
       m.vert[size_t(e.vertex)].VFp() = Face(m, e.vf);
       m.vert[size_t(e.vertex)].VFi() = e.vfi;
@@ -142,7 +130,7 @@ class CompactSnapshot {
       }
     // normals by the snapshot's rule, then the exceptions
     for (size_t i = 0; i < nf_; ++i)
-      if (Rebuilt(m.face[i])) m.face[i].N() = RuleNormal(m.face[i], normalizedRule_);
+      if (!m.face[i].IsD()) m.face[i].N() = RuleNormal(m.face[i], normalizedRule_);
     for (const NormalException& e : normals_) m.face[size_t(e.face)].N() = e.n;
     // FF from the restored faces and VF lists, as Take() found it there; then the exceptions
     for (size_t i = 0; i < nf_; ++i) {
@@ -236,28 +224,23 @@ class CompactSnapshot {
     typename FaceType::TexCoordType t[3];
   };
 
-  /// VF where vcg's rebuild from the saved faces does not give it back: every deleted face
-  /// (the rebuild skips them), and whatever the edits of an earlier run left in another order.
-  /// The rebuild is simulated on indices: per vertex the head of its list so far.
+  /// VF where vcg's rebuild (UpdateTopology::VertexFace: every vertex's list emptied, then
+  /// each live face, in order, put at the head of its corners' lists) does not give it back:
+  /// every deleted face (the rebuild skips them), and whatever the edits of an earlier run left
+  /// in another order. The rebuild is simulated on indices: per vertex the head of its list.
   void TakeVF(const MeshType& m) {
     std::vector<int32_t> head(nv_, -1);
     std::vector<char> headZ(nv_, 0);
     for (size_t i = 0; i < nf_; ++i) {
       const FaceType& f = m.face[i];
-      if (!Rebuilt(f)) {
-        FaceVF e;
-        e.face = int32_t(i);
-        for (int z = 0; z < 3; ++z) e.vf[z] = FaceIndex(m, f.cVFp(z)), e.vfi[z] = char(f.cVFi(z));
-        faceVF_.push_back(e);
-        continue;
-      }
-      bool same = true;
-      for (int z = 0; z < 3; ++z) {
-        const size_t v = size_t(face_[i].v[z]);
-        same = same && FaceIndex(m, f.cVFp(z)) == head[v] && f.cVFi(z) == headZ[v];
-        head[v] = int32_t(i);
-        headZ[v] = char(z);
-      }
+      bool same = !f.IsD();
+      if (same)
+        for (int z = 0; z < 3; ++z) {
+          const size_t v = size_t(face_[i].v[z]);
+          same = same && FaceIndex(m, f.cVFp(z)) == head[v] && f.cVFi(z) == headZ[v];
+          head[v] = int32_t(i);
+          headZ[v] = char(z);
+        }
       if (same) continue;
       FaceVF e;
       e.face = int32_t(i);
@@ -272,10 +255,6 @@ class CompactSnapshot {
     vertVF_.shrink_to_fit();
     faceVF_.shrink_to_fit();
   }
-
-  /// A face whose VF and normal Restore rebuilds: live, with its three vertices (a live face
-  /// without one breaks the preconditions; it is saved as an exception all the same).
-  static bool Rebuilt(const FaceType& f) { return !f.IsD() && f.cV(0) && f.cV(1) && f.cV(2); }
 
   /// The normal a rule gives face f from its vertices: vcg's TriangleNormal, normalized as
   /// vcg's PerFaceNormalized does (normalized) or not.
@@ -293,14 +272,15 @@ class CompactSnapshot {
   void TakeNormals(const MeshType& m) {
     size_t plain = 0, unit = 0;
     for (const FaceType& f : m.face) {
-      if (!Rebuilt(f)) continue;
-      plain += SameBits(f.cN(), RuleNormal(f, false));
-      unit += SameBits(f.cN(), RuleNormal(f, true));
+      if (f.IsD()) continue;
+      NormalType n = RuleNormal(f, false);
+      plain += SameBits(f.cN(), n);
+      unit += SameBits(f.cN(), n.Normalize());
     }
     normalizedRule_ = unit >= plain;
     for (size_t i = 0; i < nf_; ++i) {
       const FaceType& f = m.face[i];
-      if (Rebuilt(f) && SameBits(f.cN(), RuleNormal(f, normalizedRule_))) continue;
+      if (!f.IsD() && SameBits(f.cN(), RuleNormal(f, normalizedRule_))) continue;
       normals_.push_back(NormalException{int32_t(i), f.cN()});
     }
     normals_.shrink_to_fit();
