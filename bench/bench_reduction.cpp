@@ -12,7 +12,7 @@
 // refusedRouteMemo (0/1), farMeetingReach, farMeetingTravel (0: no far meetings), farMeetingRounds,
 // nearMeetingTries (0: no near meetings), nearMeetingTriesPerKept, angleRepairRounds, angleRepairSlack, travelReference (travelReferenceVertices),
 // maxTravelScale, creaseDeg, creaseStraightShare, anglePolish (anglePolishDeg; 0: none), anglePolishRounds, partialSweepUndo (0/1),
-// angleFlips (0/1), aggregate (0/1: aggregateLeftovers), gatherRadius, boundaryRings, boundaryTravel (the boundary stage's rings and maxTravel).
+// angleFlips (0/1), aggregate (0/1: aggregateLeftovers), gatherRadius, gatherTries, gatherTriesPerGathered, boundaryRings, boundaryTravel (the boundary stage's rings and maxTravel).
 // files: saveRemeshed=<path> writes the remeshed input (OFF), saveResult=<path> the result, for
 // profiling the reduction alone on a fixed input and for comparing two runs byte by byte (with
 // several models, the model's name is appended).
@@ -143,6 +143,8 @@ int main(int argc, char** argv) {
     else if (key == "angleFlips") opt.angleFlips = v != 0;
     else if (key == "aggregate") opt.aggregateLeftovers = v != 0;
     else if (key == "gatherRadius") opt.gatherRadius = int(v);
+    else if (key == "gatherTries") opt.gatherTries = int(v);
+    else if (key == "gatherTriesPerGathered") opt.gatherTriesPerGathered = int(v);
     else if (key == "creaseDeg") opt.creaseDeg = v;
     else if (key == "creaseThinEdges") opt.creaseThinEdges = v;
     else if (key == "creaseStraightShare") opt.creaseStraightShare = v;
@@ -244,8 +246,9 @@ int main(int argc, char** argv) {
                   bs.refused, bs.attempts, bs.calls);
     }
     if (opt.aggregateLeftovers)
-      std::printf("  aggregated: %d v4 and %d v8 of %d pairs tried; %d of them gathered, of %d walks\n", r.aggregatedV4,
-                  r.aggregatedV8, r.aggregationsTried, r.gathered, r.gathersTried);
+      std::printf("  aggregated: %d v4 and %d v8 of %d pairs tried; %d of them gathered, of %d walks%s\n", r.aggregatedV4,
+                  r.aggregatedV8, r.aggregationsTried, r.gathered, r.gathersTried,
+                  r.gatherBoundReached ? " (stopped at the bound)" : "");
     std::printf("  kept: %d type splits, %d local cancellations, %d transports (%d pair steps), %d glides, %d split-and-absorbs (%d partial)\n",
                 r.typeSplits, r.localCancellations, r.transports, r.pairSteps, r.glides, r.splitAbsorptions, r.partialAbsorptions);
     if (listLeftovers)  // one line per leftover: why it stays (leftover_reasons.h) and what is around it

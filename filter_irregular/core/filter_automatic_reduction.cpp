@@ -189,6 +189,10 @@ FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par
     ctx.Logf("Aggregation: %d pairs of leftover v5 merged into a v4 and %d pairs of v7 into a v8 (%d pairs tried); "
              "%d of them first walked together (%d walks tried)",
              rep.aggregatedV4, rep.aggregatedV8, rep.aggregationsTried, rep.gathered, rep.gathersTried);
+  if (opt.aggregateLeftovers && rep.gatherBoundReached)
+    ctx.Logf("Aggregation: the walks stopped at their bound of effort (%d tried, %d plus %d per kept one): most of "
+             "them did not get there",
+             rep.gathersTried, opt.gatherTries, opt.gatherTriesPerGathered);
   if (rep.thinRimLines > 0)
     ctx.Logf("Crease lines: %d rims of parts thinner than %.0f edge lengths were not kept sharp (the thin part keeps "
              "its shape within the Hausdorff budget)",
@@ -254,6 +258,7 @@ FilterOutcome ApplyAutomaticReduction(FilterContext& ctx, const ParamValues& par
   out.SetInt("aggregations_tried", rep.aggregationsTried);
   out.SetInt("aggregations_gathered", rep.gathered);
   out.SetInt("gatherings_tried", rep.gathersTried);
+  out.SetBool("gathering_bound_reached", rep.gatherBoundReached);
   out.SetInt("thin_rim_lines", rep.thinRimLines);
   out.SetInt("travel", rep.travel);
   out.SetInt("undone", rep.undone);

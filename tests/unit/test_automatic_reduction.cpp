@@ -1961,6 +1961,54 @@ TEST(ReductionParts, AggregationMergesTheLeftoverPairsATypeSplitLeavesWhereTheyA
   }
 }
 
+// The gathering's bound of effort (ReductionOptions::gatherTries, gatherTriesPerGathered):
+// walks are tried while fewer than gatherTries plus gatherTriesPerGathered per kept one were,
+// and the report says when the bound stopped them. Exact counts on the elephant remeshed to 4K
+// and reduced: with a Hausdorff budget no walk can meet, a bound of 2 tries exactly 2 walks
+// and leaves the mesh as it was, to the bit; unbounded, it tries more and reports no bound;
+// with the default budget, the walks never pass the bound's count.
+TEST(ReductionParts, TheGatheringStopsAtItsBoundOfEffortAndSaysSo) {
+  TMesh m;
+  std::unique_ptr<SurfaceProjector> input;
+  ASSERT_TRUE(RemeshedCorpus(m, "elephant.off", 4000, &input)) << "corpus mesh missing (run scripts/setup.sh)";
+  ASSERT_TRUE(AutomaticReduction<TMesh>(m, *input).Run());
+  const int radius = 12;
+  struct Case {
+    bool starved;
+    int tries, perGathered;
+  };
+  for (const Case& k : {Case{true, 2, 0}, Case{true, 0, 0}, Case{false, 3, 1}}) {
+    TMesh c;
+    vcg::tri::Append<TMesh, TMesh>::MeshCopy(c, m, false, true);
+    vcg::tri::UpdateTopology<TMesh>::FaceFace(c);
+    vcg::tri::UpdateTopology<TMesh>::VertexFace(c);
+    const test::MeshSnapshot snap = test::Snapshot(c);
+    ReductionOptions opt;
+    if (k.starved) opt.hausdorffBudgetPercent = 1e-7;
+    opt.gatherTries = k.tries;
+    opt.gatherTriesPerGathered = k.perGathered;
+    Parts p(c, *input, opt);
+    p.state.StartCount();
+    p.guard.Recount();
+    const int before = Recount(c);
+    ReductionReport rep;
+    const AggregationReport ag = AggregateLeftovers(c, p.guard, rep, &p.transport, radius);
+    SCOPED_TRACE("tries " + std::to_string(k.tries) + ", per gathered " + std::to_string(k.perGathered));
+    if (k.starved && k.tries > 0) {
+      EXPECT_EQ(ag.gathersTried, 2);
+      EXPECT_TRUE(ag.gatherBoundReached);
+    } else if (k.starved) {
+      EXPECT_GT(ag.gathersTried, 2);
+      EXPECT_FALSE(ag.gatherBoundReached);
+    } else {
+      EXPECT_LE(ag.gathersTried, k.tries + k.perGathered * ag.gathered);
+      EXPECT_EQ(Recount(c), before - ag.Kept());
+      EXPECT_TRUE(CheckInvariants(c).ok);
+    }
+    if (k.starved) EXPECT_TRUE(test::Snapshot(c) == snap) << "a refused gathering left the mesh changed";
+  }
+}
+
 // Gathering (leftover_aggregation.h, ReductionOptions::gatherRadius): after a reduction, the
 // leftover v5 (v7) with a partner of their type a few edges away, but not in sec. 6.3's
 // configuration, walk together and aggregate. On the elephant remeshed to 4K (genus 3, its

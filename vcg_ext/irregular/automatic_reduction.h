@@ -222,6 +222,7 @@ class AutomaticReduction {
       rep.aggregationsTried = ag.tried;
       rep.gathered = ag.gathered;
       rep.gathersTried = ag.gathersTried;
+      rep.gatherBoundReached = ag.gatherBoundReached;
     }
     // A stage after the sweeps (e.g. on the boundary) goes here: it runs even when the time
     // limit stopped the editing only if it is cheap; the final relaxation always does.

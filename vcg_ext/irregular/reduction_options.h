@@ -210,6 +210,16 @@ struct ReductionOptions {
                                         ///< bench, 8 models at 20K (the pairs' travel kGatherTravelScale): 12 and
                                         ///< 16 edges leave 1418 and 1409 in all (the elephant 63 and 60; without
                                         ///< gathering 90)
+  int gatherTries = 16;                 ///< default 16 (not a filter parameter): the gathering's bound of effort,
+                                        ///< as the near meetings' (nearMeetingTries): walks are tried while fewer
+                                        ///< than this many plus gatherTriesPerGathered per kept gathering were
+                                        ///< (leftover_aggregation.h); 0: no bound
+  int gatherTriesPerGathered = 3;       ///< default 3 (not a filter parameter): see gatherTries. The full set at
+                                        ///< 20K with aggregate (native bench, 0.9.33; unbounded 2514 left in all):
+                                        ///< 8 stops the femur and the man only; 4 also the bull (179 -> 185 left,
+                                        ///< 42.5 G -> 37.7 G instructions, still 3.10x the peer) and the cow; 3
+                                        ///< the bull at 205 (31.8 G), 2620 in all; 2: 209 (30.5 G), 2651 in all.
+                                        ///< The elephant keeps its 60 at each
   bool reuseDeadSlots = true;           ///< default true: a split takes the slot of a vertex or face a kept edit
                                         ///< deleted before it appends one (slot_pool.h), so the vectors grow by
                                         ///< what the run adds, not by what it adds and deletes (bunny00 subdivided
@@ -332,6 +342,7 @@ struct ReductionReport {
   int aggregationsTried = 0;  ///< ... pairs tried under the guard
   int gathered = 0;           ///< ... of the aggregations, those whose pair first walked together (gatherRadius)
   int gathersTried = 0;       ///< ... walks tried
+  bool gatherBoundReached = false;  ///< ... and stopped at their bound of effort (gatherTries)
   int thinRimLines = 0;       ///< crease lines left unprotected as a thin part's rims (creaseThinEdges)
   int travel = 0;               ///< the pair travel used: maxTravel, scaled to the mesh (travelReferenceVertices)
   int budgetRetries = 0;        ///< reruns with a tighter per-edit budget after overshooting
