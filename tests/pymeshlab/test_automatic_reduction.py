@@ -263,7 +263,7 @@ def test_deterministic_and_every_parameter_has_its_effect():
 def test_aggregation_walks_stop_at_their_bound_where_they_do_not_pay():
     """The gathering's walks are tried while they pay their way: fewer than 16 plus 3 per kept
     walk (0.9.33; most walks that fail fail after some hops, each a transport). On the femur
-    (raw, 3942 vertices, genus 2) none of its first 16 walks gets there, so the stage stops and
+    (raw, 3897 vertices, genus 2) none of its first 16 walks gets there, so the stage stops and
     says so; the aggregations without a walk are still made, and the result is the usual one."""
     ms = load("femur.off")
     t0 = tri(ms)

@@ -82,9 +82,11 @@ struct AggregationReport {
 /// get there differs by model: at 20K (native bench, 0.9.32) the elephant kept 30 of 55, the
 /// bull 32 of 177, the femur 31 of 503 and the man 28 of 807, and the failed ones were most of
 /// the stage's time (the femur: 2.1 of its 2.5 s). Deterministic: attempts are counted, not
-/// time.
-inline bool GatherOpen(const ReductionOptions& o, const AggregationReport& r) {
-  return o.gatherTries <= 0 || r.gathersTried < o.gatherTries + o.gatherTriesPerGathered * r.gathered;
+/// time. A closed bound is recorded in r (gatherBoundReached), for the report.
+inline bool GatherOpen(const ReductionOptions& o, AggregationReport& r) {
+  const bool open = o.gatherTries <= 0 || r.gathersTried < o.gatherTries + o.gatherTriesPerGathered * r.gathered;
+  r.gatherBoundReached = r.gatherBoundReached || !open;
+  return open;
 }
 
 /// The partners an interior v5 or v7 `a` can aggregate with (type_change.h's configurations),
@@ -283,15 +285,12 @@ bool Gather(MeshType& m, EditGuard<MeshType>& guard, PairTransport<MeshType>& tr
   MeshEditor<MeshType>& ed = guard.ed();
   ReductionState<MeshType>& state = guard.state();
   const int valence = ed.Valence(a);
+  if (!GatherOpen(guard.options(), out)) return false;  // before the search for partners
   const std::vector<int> near = transport.NearestIrregular({a}, radius, kGatherPartners, valence);
   bool kept = false;
   state.BeginTurn(a);
   for (int b : near) {
-    if (state.TurnExhausted()) break;
-    if (!GatherOpen(guard.options(), out)) {
-      out.gatherBoundReached = true;
-      break;
-    }
+    if (state.TurnExhausted() || !GatherOpen(guard.options(), out)) break;
     // adjacent v5 never make a v4 (sec. 3); the others were changed by nothing (a refused
     // gathering is rolled back whole)
     if (!ed.Adjacent(a, b) && ed.Valence(a) == valence && GatherPair(m, guard, transport, tc, rep, a, b, radius, out)) {
@@ -347,12 +346,7 @@ AggregationReport AggregateLeftovers(MeshType& m, EditGuard<MeshType>& guard, Re
           done = true;
           break;
         }
-      if (done || !partners.empty()) continue;
-      // once the walks' bound is reached, Gather would stop before its first walk
-      if (GatherOpen(guard.options(), out))
-        Gather(m, guard, *transport, tc, rep, a, gatherRadius, out);
-      else
-        out.gatherBoundReached = true;
+      if (!done && partners.empty()) Gather(m, guard, *transport, tc, rep, a, gatherRadius, out);
     }
     if (out.gathered == before) break;
   }
