@@ -4,15 +4,18 @@ Lambert headlight, per-vertex colours (light grey without). numpy only; see
 tests/meshlabserver/mlpy/render.py.
 
     /usr/bin/python3 scripts/render_png.py IN.ply OUT.png [--size 800x800] [--view x,y,z]
-        [--title TEXT] [--legend] [--flat] [--wire] [--face-colors]
+        [--title TEXT] [--legend] [--flat] [--wire] [--face-colors] [--crop x,y,z,r]
 """
 import argparse
 import os
 import sys
 import time
 
+import numpy as np
+
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests", "meshlabserver"))
 from mlpy import read_mesh  # noqa: E402
+from mlpy.files import Mesh  # noqa: E402
 from mlpy.render import draw_legend, draw_title, face_colors, legend_height, render, title_height, write_png  # noqa: E402
 
 
@@ -29,6 +32,27 @@ def parse_view(s):
     return v
 
 
+def parse_crop(s):
+    v = [float(x) for x in s.split(",")]
+    if len(v) != 4 or v[3] <= 0:
+        raise argparse.ArgumentTypeError("--crop needs x,y,z,r with r > 0")
+    return v
+
+
+def crop(mesh, centre, radius):
+    """The faces whose centroid lies within radius of centre, with their vertices (and the
+    per-vertex and per-face properties of those), renumbered; None if no face is that close."""
+    keep = np.linalg.norm(mesh.vertices[mesh.faces].mean(axis=1) - np.asarray(centre), axis=1) < radius
+    if not keep.any():
+        return None
+    used = np.unique(mesh.faces[keep])
+    index = np.full(len(mesh.vertices), -1, dtype=np.int64)
+    index[used] = np.arange(len(used))
+    vprops = {k: v[used] for k, v in mesh.vertex_props.items() if len(v) == len(mesh.vertices)}
+    fprops = {k: v[keep] for k, v in mesh.face_props.items() if len(v) == len(mesh.faces)}
+    return Mesh(mesh.vertices[used], index[mesh.faces[keep]], vprops, fprops)
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("input", help="mesh, .ply or .off")
@@ -40,11 +64,17 @@ def main(argv=None):
     ap.add_argument("--legend", action="store_true", help="valence colour legend (bottom left)")
     ap.add_argument("--flat", action="store_true", help="flat shading (face normals)")
     ap.add_argument("--wire", action="store_true", help="darken triangle edges")
+    ap.add_argument("--crop", type=parse_crop, default=None,
+                    help="only the faces whose centroid lies within r of the point x,y,z (a close-up)")
     ap.add_argument("--face-colors", action="store_true",
                     help="per-face colours (the PLY's face red/green/blue, e.g. the Pattern filter's) instead of vertex colours")
     a = ap.parse_args(argv)
     t0 = time.time()
     mesh = read_mesh(a.input)
+    if a.crop:
+        mesh = crop(mesh, a.crop[:3], a.crop[3])
+        if mesh is None:
+            ap.error("--crop %s: no face of %s has its centroid that close" % (",".join(map(str, a.crop)), a.input))
     per_face = face_colors(mesh) if a.face_colors else None
     if a.face_colors and per_face is None:
         ap.error("%s has no face colours (save with -m fc)" % a.input)

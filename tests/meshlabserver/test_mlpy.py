@@ -224,3 +224,38 @@ def test_render_colours(tmp_path):
     assert back.shape == (100, 120, 3)
     centre = back[50, 60].astype(int)
     assert centre[2] > centre[0] and centre[2] > centre[1]  # shaded blue in the middle
+
+
+def _render_png_script():
+    """scripts/render_png.py as a module (it is a script, not a package)."""
+    import importlib.util
+    path = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts", "render_png.py")
+    spec = importlib.util.spec_from_file_location("render_png", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_render_png_crop_keeps_the_faces_near_the_point_with_their_colours(tmp_path):
+    rp = _render_png_script()
+    g = grid(4)  # unit squares on [0, 4]^2, two triangles each
+    red = (g.vertices[:, 0] * 10 + g.vertices[:, 1]).astype(np.uint8)  # a colour that names the vertex
+    g.vertex_props = {"red": red, "green": red, "blue": red}
+    near = rp.crop(g, (2.0, 2.0, 0.0), 1.0)
+    # the centroids within 1 of (2, 2): both triangles of the four squares around it, 8 faces on
+    # the 3 x 3 vertices of [1, 3]^2
+    assert len(near.faces) == 8 and len(near.vertices) == 9
+    assert near.vertices[:, :2].min() == 1 and near.vertices[:, :2].max() == 3
+    assert (near.props["red"] == (near.vertices[:, 0] * 10 + near.vertices[:, 1]).astype(np.uint8)).all()
+    # every face keeps its own corners: the same triangles as the input's, renumbered
+    want = {tuple(sorted(map(tuple, g.vertices[f]))) for f in g.faces
+            if np.linalg.norm(g.vertices[f].mean(axis=0) - (2, 2, 0)) < 1}
+    assert {tuple(sorted(map(tuple, near.vertices[f]))) for f in near.faces} == want
+    src = str(tmp_path / "grid.ply")
+    write_ply(g, src, vertex_props=g.vertex_props)
+    out = str(tmp_path / "close.png")
+    rp.main([src, out, "--size", "60x50", "--crop", "2,2,0,1", "--view", "0,0,1"])
+    assert read_png(out).shape == (50, 60, 3)
+    with pytest.raises(SystemExit) as e:  # nothing that close: an error, no picture
+        rp.main([src, str(tmp_path / "none.png"), "--crop", "9,9,9,0.5"])
+    assert e.value.code == 2 and not os.path.exists(str(tmp_path / "none.png"))
