@@ -85,8 +85,9 @@ def main(argv=None):
     if a.legend:
         draw_legend(img)
     write_png(a.output, img)
-    print("render_png: %s (%d vertices, %d faces) -> %s in %.2f s"
-          % (a.input, len(mesh.vertices), len(mesh.faces), a.output, time.time() - t0))
+    print("render_png: %s (%d vertices, %d faces%s) -> %s in %.2f s"
+          % (a.input, len(mesh.vertices), len(mesh.faces), " in the crop" if a.crop else "", a.output,
+             time.time() - t0))
 
 
 if __name__ == "__main__":
